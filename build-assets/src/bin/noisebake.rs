@@ -1,0 +1,193 @@
+//! `noisebake`: bake spec files, generate single textures, analyse masks.
+//!
+//! ```text
+//! noisebake bake SPEC.toml --out DIR [--png]
+//! noisebake gen --kind stbn --dims 64x64x16 [--seed 7 --format u16 --KEY VALUE ...] --out FILE.{npy,png,bin}
+//! noisebake analyze FILE.npy
+//! ```
+
+use build_assets::export::{npy, png, write_atomic};
+use build_assets::spec::{self, Span, Spanned, Table, TextureSpec, Value};
+use build_assets::{Texture, generate};
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+#[derive(Parser)]
+#[command(name = "noisebake", version, about = "Bake blue-noise masks and other noise textures")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Generate every texture of a spec file into DIR/<name>.npy (and PNG slices).
+    Bake {
+        /// The spec file ([[texture]] tables).
+        spec: PathBuf,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Also write each 2D slice as a PNG.
+        #[arg(long)]
+        png: bool,
+    },
+    /// Generate one texture from flags: the spec keys as `--key value` (values in TOML syntax;
+    /// dims also as WxHxT), written as .npy, .png (slices) or .bin (raw little-endian).
+    #[command(allow_hyphen_values = true)]
+    Gen {
+        /// `--kind K --dims WxH[xT…] [--seed N] [--format F] [--KEY VALUE…] --out FILE`
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true, num_args = 0..)]
+        args: Vec<String>,
+    },
+    /// Print quality metrics of a .npy mask as JSON.
+    Analyze {
+        /// The .npy file.
+        file: PathBuf,
+        /// Read a trailing axis of 2–4 as channels.
+        #[arg(long)]
+        channels_last: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Bake { spec, out, png } => bake(&spec, &out, png),
+        Command::Gen { args } => gen_cmd(&args),
+        Command::Analyze { file, channels_last } => analyze(&file, channels_last),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Generates with a progress bar on stderr that appears once a generation has run for 2 s.
+fn generate_with_progress(spec: &TextureSpec) -> Texture {
+    let start = Instant::now();
+    let mut bar: Option<ProgressBar> = None;
+    let mut cb = |done: u64, total: u64| {
+        if bar.is_none() && start.elapsed() > Duration::from_secs(2) {
+            let b = ProgressBar::new(total);
+            b.set_style(
+                ProgressStyle::with_template("{msg} [{bar:40}] {percent}% ({elapsed}, eta {eta})")
+                    .expect("static template")
+                    .progress_chars("=> "),
+            );
+            b.set_message(spec.name.clone());
+            bar = Some(b);
+        }
+        if let Some(b) = &bar {
+            b.set_position(done);
+        }
+    };
+    let t = generate(spec, &mut cb);
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    t
+}
+
+fn write_outputs(t: &Texture, out: &Path, with_png: bool) -> Result<(), String> {
+    let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
+    match ext {
+        "npy" => write_atomic(out, &npy::to_npy(t)).map_err(|e| format!("{}: {e}", out.display()))?,
+        "bin" => write_atomic(out, &t.data).map_err(|e| format!("{}: {e}", out.display()))?,
+        "png" => {
+            let dir = out.parent().unwrap_or(Path::new("."));
+            let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or(&t.name);
+            png::write_slices(t, dir, stem)?;
+        }
+        "ktx2" => return Err("KTX2 export is not available yet; write .npy, .png or .bin".into()),
+        other => return Err(format!("unknown output extension `.{other}`; use .npy, .png or .bin")),
+    }
+    if with_png && ext != "png" {
+        let dir = out.parent().unwrap_or(Path::new("."));
+        png::write_slices(t, dir, &t.name)?;
+    }
+    Ok(())
+}
+
+fn bake(spec_path: &Path, out: &Path, with_png: bool) -> Result<(), String> {
+    let text = std::fs::read_to_string(spec_path).map_err(|e| format!("{}: {e}", spec_path.display()))?;
+    let file = spec::parse_toml(&text).map_err(|e| e.render(&spec_path.display().to_string(), &text))?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    for s in &file.textures {
+        let start = Instant::now();
+        let t = generate_with_progress(s);
+        let took = start.elapsed();
+        write_outputs(&t, &out.join(format!("{}.npy", s.name)), with_png)?;
+        println!(
+            "{:<24} {:<14} {:>10} bytes  {:>9.3} s",
+            s.name,
+            format!("{}{:?}", s.kind.name(), s.dims),
+            t.data.len(),
+            took.as_secs_f64()
+        );
+    }
+    Ok(())
+}
+
+/// Parses `--key value` pairs into a spec table (dashes in keys become underscores).
+fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
+    let mut table: Table = Vec::new();
+    let mut out = None;
+    let mut it = args.iter();
+    while let Some(flag) = it.next() {
+        let key = flag.strip_prefix("--").ok_or_else(|| format!("expected a --key, got `{flag}`"))?.replace('-', "_");
+        let raw = it.next().ok_or_else(|| format!("--{key} needs a value"))?;
+        if key == "out" {
+            out = Some(PathBuf::from(raw));
+            continue;
+        }
+        let value = if key == "dims" && raw.contains('x') {
+            let dims = raw
+                .split('x')
+                .map(|d| d.parse::<i64>().map(|d| Spanned::bare(Value::Int(d))))
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|_| format!("--dims `{raw}` is not WxH[xT…]"))?;
+            Value::Array(dims)
+        } else {
+            parse_value(raw)
+        };
+        table.push((Spanned::bare(key), Spanned { value, span: None::<Span> }));
+    }
+    Ok((table, out))
+}
+
+/// A flag value in TOML syntax (`1.9`, `[0, 1]`, `{ axes = [2], sigma = 1.9 }`, `true`); anything
+/// that does not parse as TOML is a bare string (`u16`, `stbn`, `slice`).
+fn parse_value(raw: &str) -> Value {
+    toml::from_str::<toml::Table>(&format!("v = {raw}"))
+        .ok()
+        .and_then(|t| t.get("v").and_then(|v| Value::from_toml(v).ok()))
+        .unwrap_or_else(|| Value::Str(raw.to_string()))
+}
+
+fn gen_cmd(args: &[String]) -> Result<(), String> {
+    let (table, out) = flags_to_table(args)?;
+    let out = out.ok_or("gen needs --out FILE.{npy,png,bin}")?;
+    let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or("TEXTURE").to_string();
+    let name: String = stem.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
+    let name = if name.starts_with(|c: char| c.is_ascii_digit()) { format!("_{name}") } else { name };
+    let s = spec::from_table(&table, Some(&name)).map_err(|e| e.to_string())?;
+    let start = Instant::now();
+    let t = generate_with_progress(&s);
+    eprintln!("{}: {} in {:.3} s", out.display(), s.canonical(), start.elapsed().as_secs_f64());
+    write_outputs(&t, &out, false)
+}
+
+fn analyze(file: &Path, channels_last: bool) -> Result<(), String> {
+    let bytes = std::fs::read(file).map_err(|e| format!("{}: {e}", file.display()))?;
+    let t = npy::from_npy(&bytes, "mask", channels_last).map_err(|e| format!("{}: {e}", file.display()))?;
+    let report = build_assets::analysis::analyze(&t);
+    println!("{}", serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?);
+    Ok(())
+}

@@ -1,0 +1,87 @@
+//! A tiny deterministic random number generator (SplitMix64, Steele, Lea & Flood 2014).
+//!
+//! Generators must give the same bytes for the same seed on every machine and with every
+//! version of every dependency, so the stream is defined here rather than borrowed from a crate
+//! whose algorithm may change between releases.
+
+/// SplitMix64: a 64-bit state advanced by the golden-ratio increment and finalised by a mixer.
+#[derive(Clone, Debug)]
+pub struct SplitMix64 {
+    state: u64,
+}
+
+impl SplitMix64 {
+    /// A generator whose stream is fully determined by `seed`.
+    pub fn new(seed: u64) -> Self {
+        Self { state: seed }
+    }
+
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        mix64(self.state)
+    }
+
+    /// A uniform integer in `0..n` (Lemire's multiply-shift with rejection; `n > 0`).
+    pub fn below(&mut self, n: u64) -> u64 {
+        debug_assert!(n > 0);
+        loop {
+            let m = (self.next_u64() as u128) * (n as u128);
+            let low = m as u64;
+            if low >= n.wrapping_neg() % n {
+                return (m >> 64) as u64;
+            }
+        }
+    }
+
+    /// A uniform `f64` in `[0, 1)` with 53 random bits.
+    pub fn unit_f64(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+}
+
+/// The SplitMix64 finaliser: a bijective 64-bit mixer, also used to derive sub-seeds.
+pub fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// A seed for the `index`-th independent sub-stream of `seed` (e.g. one per slice).
+pub fn derive_seed(seed: u64, index: u64) -> u64 {
+    mix64(seed ^ mix64(index.wrapping_add(0x632B_E59B_D9B4_E019)))
+}
+
+/// A uniformly random permutation of `0..n` (Fisher–Yates), as `u32`.
+pub fn permutation(n: usize, rng: &mut SplitMix64) -> Vec<u32> {
+    let mut p: Vec<u32> = (0..n as u32).collect();
+    for i in (1..n).rev() {
+        let j = rng.below(i as u64 + 1) as usize;
+        p.swap(i, j);
+    }
+    p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn below_is_in_range_and_covers_it() {
+        let mut r = SplitMix64::new(1);
+        let mut seen = [0u32; 7];
+        for _ in 0..7000 {
+            seen[r.below(7) as usize] += 1;
+        }
+        assert!(seen.iter().all(|&c| (850..1150).contains(&c)), "{seen:?}");
+    }
+
+    #[test]
+    fn permutation_is_a_bijection() {
+        let mut r = SplitMix64::new(3);
+        let mut p = permutation(1000, &mut r);
+        assert_ne!(p, (0..1000).collect::<Vec<u32>>());
+        p.sort_unstable();
+        assert_eq!(p, (0..1000).collect::<Vec<u32>>());
+    }
+}

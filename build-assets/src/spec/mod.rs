@@ -1,0 +1,533 @@
+//! The texture spec: one texture, its kind and parameters, validated and with defaults filled in.
+//!
+//! Both front ends (TOML files via [`parse_toml`], the `noise_texture!` macro via [`from_table`])
+//! produce a [`Table`] of spanned values; [`from_table`] is the one validator, so a key means the
+//! same thing everywhere and every error names the key (and points at it when a span is known).
+
+mod error;
+mod format;
+mod toml_file;
+mod value;
+
+pub use error::{SpecError, closest};
+pub use format::{Format, Scalar, decode_unit, encode_ranks, encode_unit};
+pub use toml_file::{SpecFile, parse_toml};
+pub use value::{Span, Spanned, Table, Value};
+
+use crate::vac::Group;
+
+/// Most texels a texture may have (64 Mi): void and cluster needs about
+/// [`WORK_BYTES_PER_TEXEL`] bytes of working memory per texel.
+pub const MAX_TEXELS: u64 = 1 << 26;
+/// Working memory of void and cluster per texel (texel record, queue entries, ranks, copies).
+pub const WORK_BYTES_PER_TEXEL: u64 = 64;
+/// Most footprint updates one generation may perform (texels × kernel entries), so a huge σ on a
+/// large mask is an error instead of an hours-long build.
+pub const MAX_SPLAT_WORK: u64 = 1 << 38;
+
+/// How ranks become values: over the whole volume, or within each 2D slice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Histogram {
+    /// Rank over the whole volume (the paper's choice): slices are flat only on average.
+    Volume,
+    /// Re-rank within each 2D (x, y) slice: every slice holds every value exactly once.
+    Slice,
+}
+
+/// What to generate, with every parameter explicit.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Kind {
+    /// 2D void and cluster (Ulichney 1993).
+    Blue2d {
+        /// Gaussian σ in texels (default 1.5, Ulichney's).
+        sigma: f64,
+        /// Initial pattern density.
+        initial_density: f64,
+    },
+    /// Spatiotemporal blue noise, 2D×1D (Wolfe et al. 2022, eq. 3).
+    Stbn {
+        /// Spatial σ (default 1.9).
+        sigma_xy: f64,
+        /// Temporal σ (default 1.9).
+        sigma_t: f64,
+        /// Initial pattern density (default 0.1).
+        initial_density: f64,
+        /// Ranking domain.
+        histogram: Histogram,
+    },
+    /// Void and cluster with any axis grouping (STBN App. B, eq. 15).
+    Vac {
+        /// Partition of the axes, each group with its σ.
+        groups: Vec<Group>,
+        /// Per axis: whether it wraps.
+        toroidal: Vec<bool>,
+        /// Initial pattern density (default 0.1).
+        initial_density: f64,
+        /// Ranking domain.
+        histogram: Histogram,
+    },
+    /// Independent uniform white noise per texel.
+    White,
+    /// An independent 2D blue-noise mask per slice (baseline: white over time).
+    Independent2d {
+        /// Spatial σ (default 1.9).
+        sigma: f64,
+        /// Initial pattern density.
+        initial_density: f64,
+    },
+    /// One 2D blue-noise mask animated by adding `t · φ` (golden ratio) mod 1 (STBN §4.2).
+    Golden {
+        /// Spatial σ (default 1.9).
+        sigma: f64,
+        /// Initial pattern density.
+        initial_density: f64,
+    },
+}
+
+impl Kind {
+    /// The `kind` key's value.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Kind::Blue2d { .. } => "blue2d",
+            Kind::Stbn { .. } => "stbn",
+            Kind::Vac { .. } => "vac",
+            Kind::White => "white",
+            Kind::Independent2d { .. } => "independent2d",
+            Kind::Golden { .. } => "golden",
+        }
+    }
+}
+
+/// Every kind the `kind` key accepts.
+pub const KINDS: &[&str] = &["blue2d", "stbn", "vac", "white", "independent2d", "golden"];
+/// Kinds the design names that a later release will add.
+pub const PLANNED_KINDS: &[&str] = &["fast", "ign", "r2", "plus", "bayer"];
+
+/// One texture: a name, a kind with its parameters, dims, seed and storage format.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureSpec {
+    /// The Rust item name.
+    pub name: String,
+    /// What to generate.
+    pub kind: Kind,
+    /// Sizes: x, y, then further axes.
+    pub dims: Vec<usize>,
+    /// Seed of every random choice.
+    pub seed: u64,
+    /// Storage format.
+    pub format: Format,
+}
+
+impl TextureSpec {
+    /// Total texel count.
+    pub fn texels(&self) -> usize {
+        self.dims.iter().product()
+    }
+
+    /// Size of the encoded texture in bytes.
+    pub fn byte_len(&self) -> usize {
+        self.texels() * self.format.texel_bytes()
+    }
+
+    /// A canonical one-line form with every default filled in: two specs generate the same bytes
+    /// exactly when their canonical forms are equal (the cache key hashes it).
+    pub fn canonical(&self) -> String {
+        let dims: Vec<String> = self.dims.iter().map(|d| d.to_string()).collect();
+        let mut s = format!(
+            "kind={};dims=[{}];seed={};format={}",
+            self.kind.name(),
+            dims.join(","),
+            self.seed,
+            self.format
+        );
+        let h = |h: &Histogram| if *h == Histogram::Slice { "slice" } else { "volume" };
+        match &self.kind {
+            Kind::Blue2d { sigma, initial_density }
+            | Kind::Independent2d { sigma, initial_density }
+            | Kind::Golden { sigma, initial_density } => {
+                s += &format!(";sigma={sigma:?};initial_density={initial_density:?}");
+            }
+            Kind::Stbn { sigma_xy, sigma_t, initial_density, histogram } => {
+                s += &format!(
+                    ";sigma_xy={sigma_xy:?};sigma_t={sigma_t:?};initial_density={initial_density:?};histogram={}",
+                    h(histogram)
+                );
+            }
+            Kind::Vac { groups, toroidal, initial_density, histogram } => {
+                let g: Vec<String> =
+                    groups.iter().map(|g| format!("{:?}@{:?}", g.axes, g.sigma)).collect();
+                s += &format!(
+                    ";groups=[{}];toroidal={toroidal:?};initial_density={initial_density:?};histogram={}",
+                    g.join(","),
+                    h(histogram)
+                );
+            }
+            Kind::White => {}
+        }
+        s
+    }
+}
+
+/// Checks that `name` can be a Rust item name.
+pub fn check_identifier(name: &str) -> Result<(), String> {
+    const KEYWORDS: &[&str] = &[
+        "as", "async", "await", "break", "const", "continue", "crate", "dyn", "else", "enum",
+        "extern", "false", "fn", "for", "gen", "if", "impl", "in", "let", "loop", "match", "mod",
+        "move", "mut", "pub", "ref", "return", "self", "Self", "static", "struct", "super",
+        "trait", "true", "type", "unsafe", "use", "where", "while", "abstract", "become", "box",
+        "do", "final", "macro", "override", "priv", "try", "typeof", "unsized", "virtual", "yield",
+    ];
+    let mut chars = name.chars();
+    let ok_start = matches!(chars.next(), Some(c) if c == '_' || c.is_ascii_alphabetic());
+    if !ok_start || !chars.all(|c| c == '_' || c.is_ascii_alphanumeric()) || name == "_" {
+        return Err(format!("`{name}` is not a valid Rust identifier"));
+    }
+    if KEYWORDS.contains(&name) {
+        return Err(format!("`{name}` is a Rust keyword and cannot name a texture"));
+    }
+    Ok(())
+}
+
+/// Reads the keys of one texture table, remembering which were used.
+struct Fields<'a> {
+    table: &'a Table,
+    used: Vec<bool>,
+    allowed: Vec<&'static str>,
+}
+
+impl<'a> Fields<'a> {
+    fn get(&mut self, key: &'static str) -> Option<&'a Spanned<Value>> {
+        self.allowed.push(key);
+        let i = self.table.iter().position(|(k, _)| k.value == key)?;
+        self.used[i] = true;
+        Some(&self.table[i].1)
+    }
+
+    fn f64(&mut self, key: &'static str, default: f64) -> Result<(f64, Option<Span>), SpecError> {
+        match self.get(key) {
+            None => Ok((default, None)),
+            Some(v) => Ok((number(key, v)?, v.span)),
+        }
+    }
+
+    fn positive(&mut self, key: &'static str, default: f64, max: f64) -> Result<f64, SpecError> {
+        let (x, span) = self.f64(key, default)?;
+        if !(x > 0.0 && x <= max) {
+            return Err(SpecError::at(
+                key,
+                span,
+                format!("`{key}` must be a number in (0, {max}], got {x}"),
+            ));
+        }
+        Ok(x)
+    }
+
+    fn density(&mut self) -> Result<f64, SpecError> {
+        let (x, span) = self.f64("initial_density", 0.1)?;
+        if !(x > 0.0 && x <= 0.5) {
+            return Err(SpecError::at(
+                "initial_density",
+                span,
+                format!("`initial_density` must be in (0, 0.5], got {x}"),
+            ));
+        }
+        Ok(x)
+    }
+
+    fn string(&mut self, key: &'static str) -> Result<Option<(&'a str, Option<Span>)>, SpecError> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Spanned { value: Value::Str(s), span }) => Ok(Some((s.as_str(), *span))),
+            Some(v) => Err(type_error(key, "a string", v)),
+        }
+    }
+
+    fn histogram(&mut self) -> Result<Histogram, SpecError> {
+        match self.string("histogram")? {
+            None | Some(("volume", _)) => Ok(Histogram::Volume),
+            Some(("slice", _)) => Ok(Histogram::Slice),
+            Some((other, span)) => Err(SpecError::at(
+                "histogram",
+                span,
+                format!("`histogram` must be \"volume\" or \"slice\", got \"{other}\""),
+            )),
+        }
+    }
+
+    fn finish(self, texture: &str) -> Result<(), SpecError> {
+        for (i, (k, _)) in self.table.iter().enumerate() {
+            if !self.used[i] {
+                let hint = closest(&k.value, &self.allowed)
+                    .map(|c| format!(" (did you mean `{c}`?)"))
+                    .unwrap_or_default();
+                let mut allowed = self.allowed.clone();
+                allowed.sort_unstable();
+                allowed.dedup();
+                return Err(SpecError::at(
+                    k.value.clone(),
+                    k.span,
+                    format!(
+                        "texture `{texture}`: unknown key `{}`{hint}; valid keys here: {}",
+                        k.value,
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+fn type_error(key: &str, want: &str, v: &Spanned<Value>) -> SpecError {
+    SpecError::at(key, v.span, format!("`{key}` must be {want}, got {}", v.value.type_name()))
+}
+
+fn number(key: &str, v: &Spanned<Value>) -> Result<f64, SpecError> {
+    let x = match v.value {
+        Value::Int(i) => i as f64,
+        Value::Float(f) => f,
+        _ => return Err(type_error(key, "a number", v)),
+    };
+    if !x.is_finite() {
+        return Err(SpecError::at(key, v.span, format!("`{key}` must be finite, got {x}")));
+    }
+    Ok(x)
+}
+
+fn integer(key: &str, v: &Spanned<Value>) -> Result<i64, SpecError> {
+    match v.value {
+        Value::Int(i) => Ok(i),
+        _ => Err(type_error(key, "an integer", v)),
+    }
+}
+
+/// Validates one texture table. `name` overrides a missing `name` key (the macro and the CLI
+/// give the name outside the table).
+pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, SpecError> {
+    let mut f = Fields { table, used: vec![false; table.len()], allowed: Vec::new() };
+    let name = match (f.string("name")?, name) {
+        (Some((n, span)), _) => {
+            check_identifier(n).map_err(|m| SpecError::at("name", span, m))?;
+            n.to_string()
+        }
+        (None, Some(n)) => n.to_string(),
+        (None, None) => return Err(SpecError::msg("a texture needs a `name` key")),
+    };
+    let (kind_name, kind_span) = f
+        .string("kind")?
+        .ok_or_else(|| SpecError::msg(format!("texture `{name}` needs a `kind` key")))?;
+    let dims_v = f
+        .get("dims")
+        .ok_or_else(|| SpecError::msg(format!("texture `{name}` needs a `dims` key")))?;
+    let dims = parse_dims(dims_v)?;
+    let seed = match f.get("seed") {
+        None => 0,
+        Some(v) => u64::try_from(integer("seed", v)?).map_err(|_| {
+            SpecError::at("seed", v.span, "`seed` must be a non-negative integer")
+        })?,
+    };
+    let format = match f.string("format")? {
+        None => Format::U8,
+        Some((s, span)) => Format::parse(s).ok_or_else(|| {
+            SpecError::at(
+                "format",
+                span,
+                format!("`format` must be u8, u16, f32 or a vector form like u8x3, got \"{s}\""),
+            )
+        })?,
+    };
+    let want_dims = |lo: usize, hi: usize| -> Result<(), SpecError> {
+        if dims.len() < lo || dims.len() > hi {
+            let want = if lo == hi { format!("{lo}") } else { format!("{lo} to {hi}") };
+            return Err(SpecError::at(
+                "dims",
+                dims_v.span,
+                format!("kind `{kind_name}` takes {want} dims, got {}", dims.len()),
+            ));
+        }
+        Ok(())
+    };
+    let kind = match kind_name {
+        "blue2d" => {
+            want_dims(2, 2)?;
+            Kind::Blue2d { sigma: f.positive("sigma", 1.5, 100.0)?, initial_density: f.density()? }
+        }
+        "stbn" => {
+            want_dims(3, 3)?;
+            Kind::Stbn {
+                sigma_xy: f.positive("sigma_xy", 1.9, 100.0)?,
+                sigma_t: f.positive("sigma_t", 1.9, 100.0)?,
+                initial_density: f.density()?,
+                histogram: f.histogram()?,
+            }
+        }
+        "vac" => {
+            want_dims(1, 4)?;
+            let groups = match f.get("groups") {
+                None => vec![Group { axes: (0..dims.len()).collect(), sigma: 1.9 }],
+                Some(v) => parse_groups(v, dims.len())?,
+            };
+            let toroidal = match f.get("toroidal") {
+                None => vec![true; dims.len()],
+                Some(Spanned { value: Value::Bool(b), .. }) => vec![*b; dims.len()],
+                Some(v @ Spanned { value: Value::Array(a), .. }) => {
+                    let t = a
+                        .iter()
+                        .map(|x| match x.value {
+                            Value::Bool(b) => Ok(b),
+                            _ => Err(type_error("toroidal", "a boolean or an array of booleans", x)),
+                        })
+                        .collect::<Result<Vec<_>, _>>()?;
+                    if t.len() != dims.len() {
+                        return Err(SpecError::at(
+                            "toroidal",
+                            v.span,
+                            format!("`toroidal` has {} entries for {} dims", t.len(), dims.len()),
+                        ));
+                    }
+                    t
+                }
+                Some(v) => return Err(type_error("toroidal", "a boolean or an array of booleans", v)),
+            };
+            Kind::Vac { groups, toroidal, initial_density: f.density()?, histogram: f.histogram()? }
+        }
+        "white" => {
+            want_dims(1, 4)?;
+            Kind::White
+        }
+        "independent2d" => {
+            want_dims(2, 4)?;
+            Kind::Independent2d { sigma: f.positive("sigma", 1.9, 100.0)?, initial_density: f.density()? }
+        }
+        "golden" => {
+            want_dims(3, 3)?;
+            Kind::Golden { sigma: f.positive("sigma", 1.9, 100.0)?, initial_density: f.density()? }
+        }
+        other => {
+            let msg = if PLANNED_KINDS.contains(&other) {
+                format!("kind `{other}` is not available in this version of noisebake yet")
+            } else {
+                let hint =
+                    closest(other, KINDS).map(|c| format!(" (did you mean `{c}`?)")).unwrap_or_default();
+                format!("unknown kind `{other}`{hint}; valid kinds: {}", KINDS.join(", "))
+            };
+            return Err(SpecError::at("kind", kind_span, msg));
+        }
+    };
+    if format.channels != 1 {
+        return Err(SpecError::at(
+            "format",
+            f.get("format").and_then(|v| v.span),
+            format!("kind `{kind_name}` makes scalar masks; `format` must be u8, u16 or f32, got {format}"),
+        ));
+    }
+    f.finish(&name)?;
+    let spec = TextureSpec { name, kind, dims, seed, format };
+    check_work(&spec, dims_v.span)?;
+    Ok(spec)
+}
+
+fn parse_dims(v: &Spanned<Value>) -> Result<Vec<usize>, SpecError> {
+    let Value::Array(items) = &v.value else {
+        return Err(type_error("dims", "an array of sizes like [64, 64, 16]", v));
+    };
+    if items.is_empty() {
+        return Err(SpecError::at("dims", v.span, "`dims` is empty"));
+    }
+    let mut dims = Vec::with_capacity(items.len());
+    let mut texels: u64 = 1;
+    for (i, x) in items.iter().enumerate() {
+        let d = integer("dims", x)?;
+        if d <= 0 {
+            return Err(SpecError::at("dims", x.span, format!("`dims[{i}]` must be at least 1, got {d}")));
+        }
+        texels = texels.saturating_mul(d as u64);
+        dims.push(d as usize);
+    }
+    if texels > MAX_TEXELS {
+        let gib = texels as f64 * WORK_BYTES_PER_TEXEL as f64 / (1u64 << 30) as f64;
+        return Err(SpecError::at(
+            "dims",
+            v.span,
+            format!(
+                "`dims` {dims:?} make {texels} texels, which would need about {gib:.1} GiB of working memory; the limit is {MAX_TEXELS} texels ({} GiB)",
+                MAX_TEXELS * WORK_BYTES_PER_TEXEL >> 30
+            ),
+        ));
+    }
+    Ok(dims)
+}
+
+fn parse_groups(v: &Spanned<Value>, ndims: usize) -> Result<Vec<Group>, SpecError> {
+    let Value::Array(items) = &v.value else {
+        return Err(type_error("groups", "an array of { axes = [...], sigma = ... } tables", v));
+    };
+    let mut seen = vec![false; ndims];
+    let mut groups = Vec::new();
+    for (gi, g) in items.iter().enumerate() {
+        let Value::Table(t) = &g.value else {
+            return Err(type_error(&format!("groups[{gi}]"), "a table { axes = [...], sigma = ... }", g));
+        };
+        let mut f = Fields { table: t, used: vec![false; t.len()], allowed: Vec::new() };
+        let key = format!("groups[{gi}].axes");
+        let axes_v = f.get("axes").ok_or_else(|| SpecError::at(&key, g.span, format!("`{key}` is missing")))?;
+        let Value::Array(ax) = &axes_v.value else {
+            return Err(type_error(&key, "an array of axis indices", axes_v));
+        };
+        if ax.is_empty() {
+            return Err(SpecError::at(&key, axes_v.span, format!("`{key}` is empty")));
+        }
+        let mut axes = Vec::new();
+        for a in ax {
+            let i = integer(&key, a)?;
+            if i < 0 || i as usize >= ndims {
+                return Err(SpecError::at(&key, a.span, format!("`{key}`: axis {i} does not exist (dims has {ndims} axes)")));
+            }
+            if seen[i as usize] {
+                return Err(SpecError::at(&key, a.span, format!("`{key}`: axis {i} is listed twice")));
+            }
+            seen[i as usize] = true;
+            axes.push(i as usize);
+        }
+        let sigma = f.positive("sigma", 1.9, 100.0).map_err(|mut e| {
+            e.key = Some(format!("groups[{gi}].sigma"));
+            e.message = format!("groups[{gi}]: {}", e.message);
+            e
+        })?;
+        f.finish(&format!("groups[{gi}]"))?;
+        groups.push(Group { axes, sigma });
+    }
+    if let Some(missing) = seen.iter().position(|s| !s) {
+        return Err(SpecError::at("groups", v.span, format!("`groups`: axis {missing} is missing from every group")));
+    }
+    Ok(groups)
+}
+
+/// Rejects parameter combinations whose generation would take unreasonably long.
+fn check_work(spec: &TextureSpec, span: Option<Span>) -> Result<(), SpecError> {
+    let n = spec.texels() as u64;
+    let group_work = |axes: &[usize], sigma: f64| -> u64 {
+        let r = (-2.0 * sigma * sigma * crate::vac::DEFAULT_CUTOFF.ln()).sqrt() as u64;
+        axes.iter().map(|&a| (2 * r + 1).min(spec.dims[a] as u64)).product()
+    };
+    let fp = match &spec.kind {
+        Kind::Blue2d { sigma, .. } | Kind::Independent2d { sigma, .. } | Kind::Golden { sigma, .. } => {
+            group_work(&[0, 1], *sigma)
+        }
+        Kind::Stbn { sigma_xy, sigma_t, .. } => group_work(&[0, 1], *sigma_xy) + group_work(&[2], *sigma_t),
+        Kind::Vac { groups, .. } => groups.iter().map(|g| group_work(&g.axes, g.sigma)).sum(),
+        Kind::White => 1,
+    };
+    if n.saturating_mul(fp) > MAX_SPLAT_WORK {
+        return Err(SpecError::at(
+            "dims",
+            span,
+            format!(
+                "texture `{}`: σ this large on {n} texels means {fp} energy updates per texel ({} in all, limit {MAX_SPLAT_WORK}); use a smaller σ or smaller dims",
+                spec.name,
+                n.saturating_mul(fp)
+            ),
+        ));
+    }
+    Ok(())
+}
