@@ -19,8 +19,10 @@ pub fn independent2d(
     seed: u64,
     blue2d: impl Fn(u64) -> Vec<u32> + Sync,
 ) -> Vec<u32> {
-    let per: Vec<Vec<u32>> =
-        (0..slices).into_par_iter().map(|s| blue2d(derive_seed(seed, s as u64))).collect();
+    let per: Vec<Vec<u32>> = (0..slices)
+        .into_par_iter()
+        .map(|s| blue2d(derive_seed(seed, s as u64)))
+        .collect();
     per.concat()
 }
 
@@ -32,7 +34,11 @@ pub fn golden(ranks: &[u32], frames: usize) -> Vec<f64> {
         // t·φ mod 1 computed in f64 from an exact integer product would lose nothing for any
         // frame count a texture can have (frames < 2^26).
         let shift = (t as f64 * GOLDEN).fract();
-        out.extend(ranks.iter().map(|&r| ((r as f64 + 0.5) / n + shift).fract()));
+        out.extend(
+            ranks
+                .iter()
+                .map(|&r| ((r as f64 + 0.5) / n + shift).fract()),
+        );
     }
     out
 }

@@ -12,9 +12,19 @@ pub const ALGORITHM_VERSION: u32 = 1;
 /// Progress callback: `(done, total)` texels ranked.
 pub type Progress<'a> = &'a mut dyn FnMut(u64, u64);
 
-fn vac_config(dims: &[usize], toroidal: &[bool], groups: Vec<Group>, density: f64, seed: u64) -> VacConfig {
+fn vac_config(
+    dims: &[usize],
+    toroidal: &[bool],
+    groups: Vec<Group>,
+    density: f64,
+    seed: u64,
+) -> VacConfig {
     VacConfig {
-        axes: dims.iter().zip(toroidal).map(|(&size, &toroidal)| Axis { size, toroidal }).collect(),
+        axes: dims
+            .iter()
+            .zip(toroidal)
+            .map(|(&size, &toroidal)| Axis { size, toroidal })
+            .collect(),
         groups,
         initial_density: density,
         seed,
@@ -24,8 +34,15 @@ fn vac_config(dims: &[usize], toroidal: &[bool], groups: Vec<Group>, density: f6
 
 /// Ranks of a 2D mask (σ, density, seed) — the building block of the 2D baselines.
 pub fn blue2d_ranks(w: usize, h: usize, sigma: f64, density: f64, seed: u64) -> Vec<u32> {
-    let g = vec![Group { axes: vec![0, 1], sigma }];
-    vac::rank(&vac_config(&[w, h], &[true, true], g, density, seed), &mut |_, _| {}).0
+    let g = vec![Group {
+        axes: vec![0, 1],
+        sigma,
+    }];
+    vac::rank(
+        &vac_config(&[w, h], &[true, true], g, density, seed),
+        &mut |_, _| {},
+    )
+    .0
 }
 
 /// Generates a texture. Pure: the same spec gives the same bytes on any machine and thread count.
@@ -36,39 +53,77 @@ pub fn generate(spec: &TextureSpec, progress: Progress) -> Texture {
     let slice = dims[0] * dims.get(1).copied().unwrap_or(1);
     let ranked = |ranks: Vec<u32>, histogram: Histogram| match histogram {
         Histogram::Volume => encode_ranks(&ranks, n as u32, scalar),
-        Histogram::Slice if dims.len() > 2 => {
-            encode_ranks(&vac::rank_per_slice(&ranks, dims[0], dims[1]), slice as u32, scalar)
-        }
+        Histogram::Slice if dims.len() > 2 => encode_ranks(
+            &vac::rank_per_slice(&ranks, dims[0], dims[1]),
+            slice as u32,
+            scalar,
+        ),
         Histogram::Slice => encode_ranks(&ranks, n as u32, scalar),
     };
     let data = match &spec.kind {
-        Kind::Blue2d { sigma, initial_density } => {
-            let g = vec![Group { axes: vec![0, 1], sigma: *sigma }];
+        Kind::Blue2d {
+            sigma,
+            initial_density,
+        } => {
+            let g = vec![Group {
+                axes: vec![0, 1],
+                sigma: *sigma,
+            }];
             let cfg = vac_config(dims, &[true, true], g, *initial_density, spec.seed);
             encode_ranks(&vac::rank(&cfg, progress).0, n as u32, scalar)
         }
-        Kind::Stbn { sigma_xy, sigma_t, initial_density, histogram } => {
-            let g = vec![Group { axes: vec![0, 1], sigma: *sigma_xy }, Group { axes: vec![2], sigma: *sigma_t }];
+        Kind::Stbn {
+            sigma_xy,
+            sigma_t,
+            initial_density,
+            histogram,
+        } => {
+            let g = vec![
+                Group {
+                    axes: vec![0, 1],
+                    sigma: *sigma_xy,
+                },
+                Group {
+                    axes: vec![2],
+                    sigma: *sigma_t,
+                },
+            ];
             let cfg = vac_config(dims, &[true; 3], g, *initial_density, spec.seed);
             ranked(vac::rank(&cfg, progress).0, *histogram)
         }
-        Kind::Vac { groups, toroidal, initial_density, histogram } => {
+        Kind::Vac {
+            groups,
+            toroidal,
+            initial_density,
+            histogram,
+        } => {
             let cfg = vac_config(dims, toroidal, groups.clone(), *initial_density, spec.seed);
             ranked(vac::rank(&cfg, progress).0, *histogram)
         }
         Kind::White => encode_unit(&baselines::white(n, spec.seed), scalar),
-        Kind::Independent2d { sigma, initial_density } => {
+        Kind::Independent2d {
+            sigma,
+            initial_density,
+        } => {
             let ranks = baselines::independent2d(n / slice, spec.seed, |s| {
                 blue2d_ranks(dims[0], dims[1], *sigma, *initial_density, s)
             });
             progress(n as u64, n as u64);
             encode_ranks(&ranks, slice as u32, scalar)
         }
-        Kind::Golden { sigma, initial_density } => {
+        Kind::Golden {
+            sigma,
+            initial_density,
+        } => {
             let ranks = blue2d_ranks(dims[0], dims[1], *sigma, *initial_density, spec.seed);
             progress(n as u64, n as u64);
             encode_unit(&baselines::golden(&ranks, dims[2]), scalar)
         }
     };
-    Texture { name: spec.name.clone(), dims: dims.clone(), format: spec.format, data }
+    Texture {
+        name: spec.name.clone(),
+        dims: dims.clone(),
+        format: spec.format,
+        data,
+    }
 }

@@ -58,12 +58,19 @@ pub fn power1d(seq: &[f64]) -> Vec<f64> {
 
 fn twiddles(n: usize) -> (Vec<f64>, Vec<f64>) {
     let a = |i: usize| std::f64::consts::TAU * i as f64 / n as f64;
-    ((0..n).map(|i| a(i).cos()).collect(), (0..n).map(|i| a(i).sin()).collect())
+    (
+        (0..n).map(|i| a(i).cos()).collect(),
+        (0..n).map(|i| a(i).sin()).collect(),
+    )
 }
 
 /// Signed frequency of DFT bin `k` of `n`, in cycles per sample, in `(-0.5, 0.5]`.
 pub fn freq(k: usize, n: usize) -> f64 {
-    let k = if 2 * k > n { k as f64 - n as f64 } else { k as f64 };
+    let k = if 2 * k > n {
+        k as f64 - n as f64
+    } else {
+        k as f64
+    };
     k / n as f64
 }
 
@@ -82,9 +89,15 @@ mod tests {
 
     #[test]
     fn a_cosine_lands_in_its_bin() {
-        let seq: Vec<f64> = (0..16).map(|t| (std::f64::consts::TAU * 3.0 * t as f64 / 16.0).cos()).collect();
+        let seq: Vec<f64> = (0..16)
+            .map(|t| (std::f64::consts::TAU * 3.0 * t as f64 / 16.0).cos())
+            .collect();
         let p = power1d(&seq);
         assert!(p[3] > 60.0 && p[13] > 60.0);
-        assert!(p.iter().enumerate().all(|(k, &v)| k == 3 || k == 13 || v < 1e-9));
+        assert!(
+            p.iter()
+                .enumerate()
+                .all(|(k, &v)| k == 3 || k == 13 || v < 1e-9)
+        );
     }
 }

@@ -1,7 +1,7 @@
 //! Quality metrics of masks (DESIGN.md, "How quality is measured"; STBN §4.2, Fig. 5, 6 and 8).
 //!
 //! - Spatial low-frequency power of each 2D slice and temporal low-frequency power of each
-//!   pixel's sequence: the mean DFT power at non-zero frequencies below [`LOW_FREQUENCY`] cycles
+//!   pixel's sequence: the mean DFT power at non-zero frequencies up to [`LOW_FREQUENCY`] cycles
 //!   per texel, divided by the mean power over all non-zero frequencies. White noise scores about
 //!   1; blue noise, whose spectrum is empty near the origin, far less.
 //! - Histogram flatness of each slice: the largest deviation of a bin count from the flat count.
@@ -13,18 +13,25 @@ pub mod dft;
 use crate::texture::Texture;
 use serde::Serialize;
 
-/// Frequencies strictly below this (cycles per texel, Nyquist = 0.5) count as low.
+/// Non-zero frequencies at or below this (cycles per texel, Nyquist = 0.5) count as low.
 pub const LOW_FREQUENCY: f64 = 0.125;
 /// EMA blend factor of the convergence metric (STBN Fig. 8).
 pub const EMA_ALPHA: f64 = 0.1;
 /// Frames the EMA runs for (masks loop in time).
 pub const EMA_FRAMES: usize = 64;
 
-/// Integrands of the convergence metric, with their exact integrals over [0, 1].
-pub const INTEGRANDS: [(&str, fn(f64) -> f64, f64); 3] = [
+/// An integrand of the convergence metric: name, function, exact integral over [0, 1].
+pub type Integrand = (&'static str, fn(f64) -> f64, f64);
+
+/// The ramp, step and sine of STBN Fig. 6.
+pub const INTEGRANDS: [Integrand; 3] = [
     ("ramp", |x| x, 0.5),
     ("step", |x| if x < 0.5 { 1.0 } else { 0.0 }, 0.5),
-    ("sine", |x| (std::f64::consts::PI * x).sin(), std::f64::consts::FRAC_2_PI),
+    (
+        "sine",
+        |x| (std::f64::consts::PI * x).sin(),
+        std::f64::consts::FRAC_2_PI,
+    ),
 ];
 
 /// Metrics of one texture.
@@ -69,7 +76,7 @@ fn lf_ratio(p: &[f64], f: impl Fn(usize) -> f64) -> (f64, f64) {
         }
         all += v;
         na += 1;
-        if r < LOW_FREQUENCY {
+        if r <= LOW_FREQUENCY {
             low += v;
             nl += 1;
         }
@@ -104,12 +111,18 @@ pub fn analyze(t: &Texture) -> MaskReport {
             hist[((v * bins as f64) as usize).min(bins - 1)] += 1;
         }
         let flat = s as f64 / bins as f64;
-        dev = dev.max(hist.iter().map(|&c| (c as f64 - flat).abs() / flat).fold(0.0, f64::max));
+        dev = dev.max(
+            hist.iter()
+                .map(|&c| (c as f64 - flat).abs() / flat)
+                .fold(0.0, f64::max),
+        );
     }
     let (temporal_lf, convergence) = if t.dims.len() >= 3 {
         let frames = t.dims[2];
         // Pixel sequences along axis 2 (within the first block of further axes).
-        let seqs: Vec<Vec<f64>> = (0..s).map(|i| (0..frames).map(|f| vals[f * s + i]).collect()).collect();
+        let seqs: Vec<Vec<f64>> = (0..s)
+            .map(|i| (0..frames).map(|f| vals[f * s + i]).collect())
+            .collect();
         let (mut low, mut all) = (0.0, 0.0);
         for q in &seqs {
             let p = dft::power1d(q);
@@ -117,7 +130,13 @@ pub fn analyze(t: &Texture) -> MaskReport {
             low += l;
             all += a;
         }
-        (Some(low / all), INTEGRANDS.iter().map(|&(name, f, truth)| convergence(&seqs, name, f, truth)).collect())
+        (
+            Some(low / all),
+            INTEGRANDS
+                .iter()
+                .map(|&(name, f, truth)| convergence(&seqs, name, f, truth))
+                .collect(),
+        )
     } else {
         (None, Vec::new())
     };
@@ -131,7 +150,12 @@ pub fn analyze(t: &Texture) -> MaskReport {
     }
 }
 
-fn convergence(seqs: &[Vec<f64>], name: &'static str, f: fn(f64) -> f64, truth: f64) -> Convergence {
+fn convergence(
+    seqs: &[Vec<f64>],
+    name: &'static str,
+    f: fn(f64) -> f64,
+    truth: f64,
+) -> Convergence {
     let frames = seqs[0].len();
     let n = seqs.len() as f64;
     let mut mc = vec![0.0; frames];

@@ -16,7 +16,11 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 #[derive(Parser)]
-#[command(name = "noisebake", version, about = "Bake blue-noise masks and other noise textures")]
+#[command(
+    name = "noisebake",
+    version,
+    about = "Bake blue-noise masks and other noise textures"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -58,7 +62,10 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Bake { spec, out, png } => bake(&spec, &out, png),
         Command::Gen { args } => gen_cmd(&args),
-        Command::Analyze { file, channels_last } => analyze(&file, channels_last),
+        Command::Analyze {
+            file,
+            channels_last,
+        } => analyze(&file, channels_last),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -98,7 +105,9 @@ fn generate_with_progress(spec: &TextureSpec) -> Texture {
 fn write_outputs(t: &Texture, out: &Path, with_png: bool) -> Result<(), String> {
     let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     match ext {
-        "npy" => write_atomic(out, &npy::to_npy(t)).map_err(|e| format!("{}: {e}", out.display()))?,
+        "npy" => {
+            write_atomic(out, &npy::to_npy(t)).map_err(|e| format!("{}: {e}", out.display()))?
+        }
         "bin" => write_atomic(out, &t.data).map_err(|e| format!("{}: {e}", out.display()))?,
         "png" => {
             let dir = out.parent().unwrap_or(Path::new("."));
@@ -106,7 +115,11 @@ fn write_outputs(t: &Texture, out: &Path, with_png: bool) -> Result<(), String> 
             png::write_slices(t, dir, stem)?;
         }
         "ktx2" => return Err("KTX2 export is not available yet; write .npy, .png or .bin".into()),
-        other => return Err(format!("unknown output extension `.{other}`; use .npy, .png or .bin")),
+        other => {
+            return Err(format!(
+                "unknown output extension `.{other}`; use .npy, .png or .bin"
+            ));
+        }
     }
     if with_png && ext != "png" {
         let dir = out.parent().unwrap_or(Path::new("."));
@@ -116,8 +129,10 @@ fn write_outputs(t: &Texture, out: &Path, with_png: bool) -> Result<(), String> 
 }
 
 fn bake(spec_path: &Path, out: &Path, with_png: bool) -> Result<(), String> {
-    let text = std::fs::read_to_string(spec_path).map_err(|e| format!("{}: {e}", spec_path.display()))?;
-    let file = spec::parse_toml(&text).map_err(|e| e.render(&spec_path.display().to_string(), &text))?;
+    let text =
+        std::fs::read_to_string(spec_path).map_err(|e| format!("{}: {e}", spec_path.display()))?;
+    let file =
+        spec::parse_toml(&text).map_err(|e| e.render(&spec_path.display().to_string(), &text))?;
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     for s in &file.textures {
         let start = Instant::now();
@@ -141,7 +156,10 @@ fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
     let mut out = None;
     let mut it = args.iter();
     while let Some(flag) = it.next() {
-        let key = flag.strip_prefix("--").ok_or_else(|| format!("expected a --key, got `{flag}`"))?.replace('-', "_");
+        let key = flag
+            .strip_prefix("--")
+            .ok_or_else(|| format!("expected a --key, got `{flag}`"))?
+            .replace('-', "_");
         let raw = it.next().ok_or_else(|| format!("--{key} needs a value"))?;
         if key == "out" {
             out = Some(PathBuf::from(raw));
@@ -157,7 +175,13 @@ fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
         } else {
             parse_value(raw)
         };
-        table.push((Spanned::bare(key), Spanned { value, span: None::<Span> }));
+        table.push((
+            Spanned::bare(key),
+            Spanned {
+                value,
+                span: None::<Span>,
+            },
+        ));
     }
     Ok((table, out))
 }
@@ -174,20 +198,40 @@ fn parse_value(raw: &str) -> Value {
 fn gen_cmd(args: &[String]) -> Result<(), String> {
     let (table, out) = flags_to_table(args)?;
     let out = out.ok_or("gen needs --out FILE.{npy,png,bin}")?;
-    let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or("TEXTURE").to_string();
-    let name: String = stem.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect();
-    let name = if name.starts_with(|c: char| c.is_ascii_digit()) { format!("_{name}") } else { name };
+    let stem = out
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("TEXTURE")
+        .to_string();
+    let name: String = stem
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    let name = if name.starts_with(|c: char| c.is_ascii_digit()) {
+        format!("_{name}")
+    } else {
+        name
+    };
     let s = spec::from_table(&table, Some(&name)).map_err(|e| e.to_string())?;
     let start = Instant::now();
     let t = generate_with_progress(&s);
-    eprintln!("{}: {} in {:.3} s", out.display(), s.canonical(), start.elapsed().as_secs_f64());
+    eprintln!(
+        "{}: {} in {:.3} s",
+        out.display(),
+        s.canonical(),
+        start.elapsed().as_secs_f64()
+    );
     write_outputs(&t, &out, false)
 }
 
 fn analyze(file: &Path, channels_last: bool) -> Result<(), String> {
     let bytes = std::fs::read(file).map_err(|e| format!("{}: {e}", file.display()))?;
-    let t = npy::from_npy(&bytes, "mask", channels_last).map_err(|e| format!("{}: {e}", file.display()))?;
+    let t = npy::from_npy(&bytes, "mask", channels_last)
+        .map_err(|e| format!("{}: {e}", file.display()))?;
     let report = build_assets::analysis::analyze(&t);
-    println!("{}", serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?);
+    println!(
+        "{}",
+        serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+    );
     Ok(())
 }

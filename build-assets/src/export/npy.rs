@@ -12,7 +12,14 @@ pub fn to_npy(t: &Texture) -> Vec<u8> {
     }
     let shape_str = match shape.len() {
         1 => format!("({},)", shape[0]),
-        _ => format!("({})", shape.iter().map(|s| s.to_string()).collect::<Vec<_>>().join(", ")),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(|s| s.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
     };
     let mut header = format!(
         "{{'descr': '{}', 'fortran_order': False, 'shape': {shape_str}, }}",
@@ -39,16 +46,26 @@ pub fn from_npy(bytes: &[u8], name: &str, channels_last: bool) -> Result<Texture
     }
     let (hlen, start) = match bytes[6] {
         1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
-        2 | 3 if bytes.len() >= 12 => {
-            (u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize, 12)
-        }
+        2 | 3 if bytes.len() >= 12 => (
+            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
+            12,
+        ),
         v => return Err(format!("unsupported .npy version {v}")),
     };
-    let header = std::str::from_utf8(bytes.get(start..start + hlen).ok_or("truncated .npy header")?)
-        .map_err(|_| "the .npy header is not text")?;
+    let header = std::str::from_utf8(
+        bytes
+            .get(start..start + hlen)
+            .ok_or("truncated .npy header")?,
+    )
+    .map_err(|_| "the .npy header is not text")?;
     let field = |key: &str| -> Result<&str, String> {
-        let at = header.find(&format!("'{key}'")).ok_or(format!("the .npy header has no '{key}'"))?;
-        Ok(header[at + key.len() + 2..].trim_start().trim_start_matches(':').trim_start())
+        let at = header
+            .find(&format!("'{key}'"))
+            .ok_or(format!("the .npy header has no '{key}'"))?;
+        Ok(header[at + key.len() + 2..]
+            .trim_start()
+            .trim_start_matches(':')
+            .trim_start())
     };
     let descr = field("descr")?;
     let scalar = if descr.starts_with("'|u1'") || descr.starts_with("'<u1'") {
@@ -58,7 +75,10 @@ pub fn from_npy(bytes: &[u8], name: &str, channels_last: bool) -> Result<Texture
     } else if descr.starts_with("'<f4'") {
         Scalar::F32
     } else {
-        return Err(format!("unsupported dtype {}", descr.split(',').next().unwrap_or(descr)));
+        return Err(format!(
+            "unsupported dtype {}",
+            descr.split(',').next().unwrap_or(descr)
+        ));
     };
     if field("fortran_order")?.starts_with("True") {
         return Err("Fortran-order .npy files are not supported".into());
@@ -80,9 +100,17 @@ pub fn from_npy(bytes: &[u8], name: &str, channels_last: bool) -> Result<Texture
     let want = dims.iter().product::<usize>() * format.texel_bytes();
     let data = &bytes[start + hlen..];
     if data.len() != want {
-        return Err(format!("the .npy data holds {} bytes, its shape needs {want}", data.len()));
+        return Err(format!(
+            "the .npy data holds {} bytes, its shape needs {want}",
+            data.len()
+        ));
     }
-    Ok(Texture { name: name.to_string(), dims, format, data: data.to_vec() })
+    Ok(Texture {
+        name: name.to_string(),
+        dims,
+        format,
+        data: data.to_vec(),
+    })
 }
 
 #[cfg(test)]
@@ -91,7 +119,12 @@ mod tests {
 
     #[test]
     fn round_trips_and_aligns_the_header() {
-        let t = Texture { name: "t".into(), dims: vec![3, 2, 2], format: Format::U16, data: (0..24).collect() };
+        let t = Texture {
+            name: "t".into(),
+            dims: vec![3, 2, 2],
+            format: Format::U16,
+            data: (0..24).collect(),
+        };
         let bytes = to_npy(&t);
         let hlen = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
         assert_eq!((10 + hlen) % 64, 0);

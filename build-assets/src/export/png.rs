@@ -33,9 +33,15 @@ pub fn write_slices(t: &Texture, dir: &Path, stem: &str) -> Result<Vec<PathBuf>,
         let enc = image::codecs::png::PngEncoder::new(&mut png);
         let ch = t.format.channels;
         let res = match (t.format.scalar, ch) {
-            (Scalar::U8, 1) => image::ImageEncoder::write_image(enc, bytes, w, h, image::ExtendedColorType::L8),
-            (Scalar::U8, 3) => image::ImageEncoder::write_image(enc, bytes, w, h, image::ExtendedColorType::Rgb8),
-            (Scalar::U8, 4) => image::ImageEncoder::write_image(enc, bytes, w, h, image::ExtendedColorType::Rgba8),
+            (Scalar::U8, 1) => {
+                image::ImageEncoder::write_image(enc, bytes, w, h, image::ExtendedColorType::L8)
+            }
+            (Scalar::U8, 3) => {
+                image::ImageEncoder::write_image(enc, bytes, w, h, image::ExtendedColorType::Rgb8)
+            }
+            (Scalar::U8, 4) => {
+                image::ImageEncoder::write_image(enc, bytes, w, h, image::ExtendedColorType::Rgba8)
+            }
             (_, 1) => {
                 let vals: Vec<u16> = crate::spec::decode_unit(bytes, t.format.scalar)
                     .iter()
@@ -43,10 +49,16 @@ pub fn write_slices(t: &Texture, dir: &Path, stem: &str) -> Result<Vec<PathBuf>,
                     .collect();
                 let img: ImageBuffer<Luma<u16>, Vec<u16>> =
                     ImageBuffer::from_raw(w, h, vals).ok_or("slice size mismatch")?;
-                img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png).map_err(|e| e.to_string())?;
+                img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+                    .map_err(|e| e.to_string())?;
                 Ok(())
             }
-            _ => return Err(format!("PNG export of {} textures is not supported; use .npy", t.format)),
+            _ => {
+                return Err(format!(
+                    "PNG export of {} textures is not supported; use .npy",
+                    t.format
+                ));
+            }
         };
         res.map_err(|e| e.to_string())?;
         super::write_atomic(&path, &png).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -60,8 +72,17 @@ pub fn read_gray(path: &Path) -> Result<(usize, usize, Vec<f64>), String> {
     let img = image::open(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let (w, h) = (img.width() as usize, img.height() as usize);
     let vals = match img {
-        image::DynamicImage::ImageLuma8(b) => b.into_raw().iter().map(|&v| (v as f64 + 0.5) / 256.0).collect(),
-        other => other.into_luma16().into_raw().iter().map(|&v| (v as f64 + 0.5) / 65536.0).collect(),
+        image::DynamicImage::ImageLuma8(b) => b
+            .into_raw()
+            .iter()
+            .map(|&v| (v as f64 + 0.5) / 256.0)
+            .collect(),
+        other => other
+            .into_luma16()
+            .into_raw()
+            .iter()
+            .map(|&v| (v as f64 + 0.5) / 65536.0)
+            .collect(),
     };
     Ok((w, h, vals))
 }

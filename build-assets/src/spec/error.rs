@@ -18,12 +18,20 @@ pub struct SpecError {
 impl SpecError {
     /// An error about `key` at `span`.
     pub fn at(key: impl Into<String>, span: Option<Span>, message: impl Into<String>) -> Self {
-        Self { message: message.into(), key: Some(key.into()), span }
+        Self {
+            message: message.into(),
+            key: Some(key.into()),
+            span,
+        }
     }
 
     /// An error not tied to a key.
     pub fn msg(message: impl Into<String>) -> Self {
-        Self { message: message.into(), key: None, span: None }
+        Self {
+            message: message.into(),
+            key: None,
+            span: None,
+        }
     }
 
     /// Renders the error against a TOML file: `file:line:col: message` plus the source line.
@@ -67,7 +75,9 @@ fn levenshtein(a: &str, b: &str) -> usize {
     for (i, ca) in a.chars().enumerate() {
         let mut cur = vec![i + 1; b.len() + 1];
         for (j, &cb) in b.iter().enumerate() {
-            cur[j + 1] = (prev[j] + usize::from(ca != cb)).min(prev[j + 1] + 1).min(cur[j] + 1);
+            cur[j + 1] = (prev[j] + usize::from(ca != cb))
+                .min(prev[j + 1] + 1)
+                .min(cur[j] + 1);
         }
         prev = cur;
     }
@@ -89,6 +99,9 @@ mod tests {
     fn renders_line_and_column() {
         let src = "a = 1\nsigma = -2\n";
         let e = SpecError::at("sigma", Some(Span { start: 14, end: 16 }), "bad");
-        assert_eq!(e.render("noise.toml", src), "noise.toml:2:9: bad\n    | sigma = -2");
+        assert_eq!(
+            e.render("noise.toml", src),
+            "noise.toml:2:9: bad\n    | sigma = -2"
+        );
     }
 }

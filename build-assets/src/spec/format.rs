@@ -46,11 +46,20 @@ pub struct Format {
 
 impl Format {
     /// One u8 channel.
-    pub const U8: Format = Format { scalar: Scalar::U8, channels: 1 };
+    pub const U8: Format = Format {
+        scalar: Scalar::U8,
+        channels: 1,
+    };
     /// One u16 channel.
-    pub const U16: Format = Format { scalar: Scalar::U16, channels: 1 };
+    pub const U16: Format = Format {
+        scalar: Scalar::U16,
+        channels: 1,
+    };
     /// One f32 channel.
-    pub const F32: Format = Format { scalar: Scalar::F32, channels: 1 };
+    pub const F32: Format = Format {
+        scalar: Scalar::F32,
+        channels: 1,
+    };
 
     /// Parses `u8`, `u16`, `f32`, or a vector form such as `u8x3` / `f32x4`.
     pub fn parse(s: &str) -> Option<Format> {
@@ -64,7 +73,10 @@ impl Format {
             "f32" => Scalar::F32,
             _ => return None,
         };
-        Some(Format { scalar, channels: ch })
+        Some(Format {
+            scalar,
+            channels: ch,
+        })
     }
 
     /// Bytes per texel.
@@ -80,7 +92,11 @@ impl fmt::Display for Format {
             Scalar::U16 => "u16",
             Scalar::F32 => "f32",
         };
-        if self.channels == 1 { write!(f, "{b}") } else { write!(f, "{b}x{}", self.channels) }
+        if self.channels == 1 {
+            write!(f, "{b}")
+        } else {
+            write!(f, "{b}x{}", self.channels)
+        }
     }
 }
 
@@ -88,10 +104,14 @@ impl fmt::Display for Format {
 pub fn encode_ranks(ranks: &[u32], count: u32, scalar: Scalar) -> Vec<u8> {
     let n = count as u64;
     match scalar {
-        Scalar::U8 => ranks.iter().map(|&r| ((r as u64 * 256) / n) as u8).collect(),
-        Scalar::U16 => {
-            ranks.iter().flat_map(|&r| (((r as u64 * 65536) / n) as u16).to_le_bytes()).collect()
-        }
+        Scalar::U8 => ranks
+            .iter()
+            .map(|&r| ((r as u64 * 256) / n) as u8)
+            .collect(),
+        Scalar::U16 => ranks
+            .iter()
+            .flat_map(|&r| (((r as u64 * 65536) / n) as u16).to_le_bytes())
+            .collect(),
         Scalar::F32 => ranks
             .iter()
             .flat_map(|&r| (((r as f64 + 0.5) / n as f64) as f32).to_le_bytes())
@@ -104,12 +124,15 @@ pub fn encode_unit(values: &[f64], scalar: Scalar) -> Vec<u8> {
     let clamp = |v: f64, top: f64| (v * top).floor().clamp(0.0, top - 1.0);
     match scalar {
         Scalar::U8 => values.iter().map(|&v| clamp(v, 256.0) as u8).collect(),
-        Scalar::U16 => values.iter().flat_map(|&v| (clamp(v, 65536.0) as u16).to_le_bytes()).collect(),
+        Scalar::U16 => values
+            .iter()
+            .flat_map(|&v| (clamp(v, 65536.0) as u16).to_le_bytes())
+            .collect(),
         Scalar::F32 => values
             .iter()
             .flat_map(|&v| {
                 // The largest f32 below 1 keeps [0, 1) closed under rounding.
-                let x = (v as f32).min(1.0 - f32::EPSILON / 2.0).max(0.0);
+                let x = (v as f32).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
                 x.to_le_bytes()
             })
             .collect(),

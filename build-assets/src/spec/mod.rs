@@ -140,22 +140,49 @@ impl TextureSpec {
             self.seed,
             self.format
         );
-        let h = |h: &Histogram| if *h == Histogram::Slice { "slice" } else { "volume" };
+        let h = |h: &Histogram| {
+            if *h == Histogram::Slice {
+                "slice"
+            } else {
+                "volume"
+            }
+        };
         match &self.kind {
-            Kind::Blue2d { sigma, initial_density }
-            | Kind::Independent2d { sigma, initial_density }
-            | Kind::Golden { sigma, initial_density } => {
+            Kind::Blue2d {
+                sigma,
+                initial_density,
+            }
+            | Kind::Independent2d {
+                sigma,
+                initial_density,
+            }
+            | Kind::Golden {
+                sigma,
+                initial_density,
+            } => {
                 s += &format!(";sigma={sigma:?};initial_density={initial_density:?}");
             }
-            Kind::Stbn { sigma_xy, sigma_t, initial_density, histogram } => {
+            Kind::Stbn {
+                sigma_xy,
+                sigma_t,
+                initial_density,
+                histogram,
+            } => {
                 s += &format!(
                     ";sigma_xy={sigma_xy:?};sigma_t={sigma_t:?};initial_density={initial_density:?};histogram={}",
                     h(histogram)
                 );
             }
-            Kind::Vac { groups, toroidal, initial_density, histogram } => {
-                let g: Vec<String> =
-                    groups.iter().map(|g| format!("{:?}@{:?}", g.axes, g.sigma)).collect();
+            Kind::Vac {
+                groups,
+                toroidal,
+                initial_density,
+                histogram,
+            } => {
+                let g: Vec<String> = groups
+                    .iter()
+                    .map(|g| format!("{:?}@{:?}", g.axes, g.sigma))
+                    .collect();
                 s += &format!(
                     ";groups=[{}];toroidal={toroidal:?};initial_density={initial_density:?};histogram={}",
                     g.join(","),
@@ -183,7 +210,9 @@ pub fn check_identifier(name: &str) -> Result<(), String> {
         return Err(format!("`{name}` is not a valid Rust identifier"));
     }
     if KEYWORDS.contains(&name) {
-        return Err(format!("`{name}` is a Rust keyword and cannot name a texture"));
+        return Err(format!(
+            "`{name}` is a Rust keyword and cannot name a texture"
+        ));
     }
     Ok(())
 }
@@ -237,7 +266,10 @@ impl<'a> Fields<'a> {
     fn string(&mut self, key: &'static str) -> Result<Option<(&'a str, Option<Span>)>, SpecError> {
         match self.get(key) {
             None => Ok(None),
-            Some(Spanned { value: Value::Str(s), span }) => Ok(Some((s.as_str(), *span))),
+            Some(Spanned {
+                value: Value::Str(s),
+                span,
+            }) => Ok(Some((s.as_str(), *span))),
             Some(v) => Err(type_error(key, "a string", v)),
         }
     }
@@ -279,7 +311,11 @@ impl<'a> Fields<'a> {
 }
 
 fn type_error(key: &str, want: &str, v: &Spanned<Value>) -> SpecError {
-    SpecError::at(key, v.span, format!("`{key}` must be {want}, got {}", v.value.type_name()))
+    SpecError::at(
+        key,
+        v.span,
+        format!("`{key}` must be {want}, got {}", v.value.type_name()),
+    )
 }
 
 fn number(key: &str, v: &Spanned<Value>) -> Result<f64, SpecError> {
@@ -289,7 +325,11 @@ fn number(key: &str, v: &Spanned<Value>) -> Result<f64, SpecError> {
         _ => return Err(type_error(key, "a number", v)),
     };
     if !x.is_finite() {
-        return Err(SpecError::at(key, v.span, format!("`{key}` must be finite, got {x}")));
+        return Err(SpecError::at(
+            key,
+            v.span,
+            format!("`{key}` must be finite, got {x}"),
+        ));
     }
     Ok(x)
 }
@@ -304,7 +344,11 @@ fn integer(key: &str, v: &Spanned<Value>) -> Result<i64, SpecError> {
 /// Validates one texture table. `name` overrides a missing `name` key (the macro and the CLI
 /// give the name outside the table).
 pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, SpecError> {
-    let mut f = Fields { table, used: vec![false; table.len()], allowed: Vec::new() };
+    let mut f = Fields {
+        table,
+        used: vec![false; table.len()],
+        allowed: Vec::new(),
+    };
     let name = match (f.string("name")?, name) {
         (Some((n, span)), _) => {
             check_identifier(n).map_err(|m| SpecError::at("name", span, m))?;
@@ -322,9 +366,8 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
     let dims = parse_dims(dims_v)?;
     let seed = match f.get("seed") {
         None => 0,
-        Some(v) => u64::try_from(integer("seed", v)?).map_err(|_| {
-            SpecError::at("seed", v.span, "`seed` must be a non-negative integer")
-        })?,
+        Some(v) => u64::try_from(integer("seed", v)?)
+            .map_err(|_| SpecError::at("seed", v.span, "`seed` must be a non-negative integer"))?,
     };
     let format = match f.string("format")? {
         None => Format::U8,
@@ -338,7 +381,11 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
     };
     let want_dims = |lo: usize, hi: usize| -> Result<(), SpecError> {
         if dims.len() < lo || dims.len() > hi {
-            let want = if lo == hi { format!("{lo}") } else { format!("{lo} to {hi}") };
+            let want = if lo == hi {
+                format!("{lo}")
+            } else {
+                format!("{lo} to {hi}")
+            };
             return Err(SpecError::at(
                 "dims",
                 dims_v.span,
@@ -350,7 +397,10 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
     let kind = match kind_name {
         "blue2d" => {
             want_dims(2, 2)?;
-            Kind::Blue2d { sigma: f.positive("sigma", 1.5, 100.0)?, initial_density: f.density()? }
+            Kind::Blue2d {
+                sigma: f.positive("sigma", 1.5, 100.0)?,
+                initial_density: f.density()?,
+            }
         }
         "stbn" => {
             want_dims(3, 3)?;
@@ -364,18 +414,33 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         "vac" => {
             want_dims(1, 4)?;
             let groups = match f.get("groups") {
-                None => vec![Group { axes: (0..dims.len()).collect(), sigma: 1.9 }],
+                None => vec![Group {
+                    axes: (0..dims.len()).collect(),
+                    sigma: 1.9,
+                }],
                 Some(v) => parse_groups(v, dims.len())?,
             };
             let toroidal = match f.get("toroidal") {
                 None => vec![true; dims.len()],
-                Some(Spanned { value: Value::Bool(b), .. }) => vec![*b; dims.len()],
-                Some(v @ Spanned { value: Value::Array(a), .. }) => {
+                Some(Spanned {
+                    value: Value::Bool(b),
+                    ..
+                }) => vec![*b; dims.len()],
+                Some(
+                    v @ Spanned {
+                        value: Value::Array(a),
+                        ..
+                    },
+                ) => {
                     let t = a
                         .iter()
                         .map(|x| match x.value {
                             Value::Bool(b) => Ok(b),
-                            _ => Err(type_error("toroidal", "a boolean or an array of booleans", x)),
+                            _ => Err(type_error(
+                                "toroidal",
+                                "a boolean or an array of booleans",
+                                x,
+                            )),
                         })
                         .collect::<Result<Vec<_>, _>>()?;
                     if t.len() != dims.len() {
@@ -387,9 +452,20 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
                     }
                     t
                 }
-                Some(v) => return Err(type_error("toroidal", "a boolean or an array of booleans", v)),
+                Some(v) => {
+                    return Err(type_error(
+                        "toroidal",
+                        "a boolean or an array of booleans",
+                        v,
+                    ));
+                }
             };
-            Kind::Vac { groups, toroidal, initial_density: f.density()?, histogram: f.histogram()? }
+            Kind::Vac {
+                groups,
+                toroidal,
+                initial_density: f.density()?,
+                histogram: f.histogram()?,
+            }
         }
         "white" => {
             want_dims(1, 4)?;
@@ -397,19 +473,29 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         }
         "independent2d" => {
             want_dims(2, 4)?;
-            Kind::Independent2d { sigma: f.positive("sigma", 1.9, 100.0)?, initial_density: f.density()? }
+            Kind::Independent2d {
+                sigma: f.positive("sigma", 1.9, 100.0)?,
+                initial_density: f.density()?,
+            }
         }
         "golden" => {
             want_dims(3, 3)?;
-            Kind::Golden { sigma: f.positive("sigma", 1.9, 100.0)?, initial_density: f.density()? }
+            Kind::Golden {
+                sigma: f.positive("sigma", 1.9, 100.0)?,
+                initial_density: f.density()?,
+            }
         }
         other => {
             let msg = if PLANNED_KINDS.contains(&other) {
                 format!("kind `{other}` is not available in this version of noisebake yet")
             } else {
-                let hint =
-                    closest(other, KINDS).map(|c| format!(" (did you mean `{c}`?)")).unwrap_or_default();
-                format!("unknown kind `{other}`{hint}; valid kinds: {}", KINDS.join(", "))
+                let hint = closest(other, KINDS)
+                    .map(|c| format!(" (did you mean `{c}`?)"))
+                    .unwrap_or_default();
+                format!(
+                    "unknown kind `{other}`{hint}; valid kinds: {}",
+                    KINDS.join(", ")
+                )
             };
             return Err(SpecError::at("kind", kind_span, msg));
         }
@@ -418,11 +504,19 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         return Err(SpecError::at(
             "format",
             f.get("format").and_then(|v| v.span),
-            format!("kind `{kind_name}` makes scalar masks; `format` must be u8, u16 or f32, got {format}"),
+            format!(
+                "kind `{kind_name}` makes scalar masks; `format` must be u8, u16 or f32, got {format}"
+            ),
         ));
     }
     f.finish(&name)?;
-    let spec = TextureSpec { name, kind, dims, seed, format };
+    let spec = TextureSpec {
+        name,
+        kind,
+        dims,
+        seed,
+        format,
+    };
     check_work(&spec, dims_v.span)?;
     Ok(spec)
 }
@@ -439,7 +533,11 @@ fn parse_dims(v: &Spanned<Value>) -> Result<Vec<usize>, SpecError> {
     for (i, x) in items.iter().enumerate() {
         let d = integer("dims", x)?;
         if d <= 0 {
-            return Err(SpecError::at("dims", x.span, format!("`dims[{i}]` must be at least 1, got {d}")));
+            return Err(SpecError::at(
+                "dims",
+                x.span,
+                format!("`dims[{i}]` must be at least 1, got {d}"),
+            ));
         }
         texels = texels.saturating_mul(d as u64);
         dims.push(d as usize);
@@ -451,7 +549,7 @@ fn parse_dims(v: &Spanned<Value>) -> Result<Vec<usize>, SpecError> {
             v.span,
             format!(
                 "`dims` {dims:?} make {texels} texels, which would need about {gib:.1} GiB of working memory; the limit is {MAX_TEXELS} texels ({} GiB)",
-                MAX_TEXELS * WORK_BYTES_PER_TEXEL >> 30
+                (MAX_TEXELS * WORK_BYTES_PER_TEXEL) >> 30
             ),
         ));
     }
@@ -460,31 +558,57 @@ fn parse_dims(v: &Spanned<Value>) -> Result<Vec<usize>, SpecError> {
 
 fn parse_groups(v: &Spanned<Value>, ndims: usize) -> Result<Vec<Group>, SpecError> {
     let Value::Array(items) = &v.value else {
-        return Err(type_error("groups", "an array of { axes = [...], sigma = ... } tables", v));
+        return Err(type_error(
+            "groups",
+            "an array of { axes = [...], sigma = ... } tables",
+            v,
+        ));
     };
     let mut seen = vec![false; ndims];
     let mut groups = Vec::new();
     for (gi, g) in items.iter().enumerate() {
         let Value::Table(t) = &g.value else {
-            return Err(type_error(&format!("groups[{gi}]"), "a table { axes = [...], sigma = ... }", g));
+            return Err(type_error(
+                &format!("groups[{gi}]"),
+                "a table { axes = [...], sigma = ... }",
+                g,
+            ));
         };
-        let mut f = Fields { table: t, used: vec![false; t.len()], allowed: Vec::new() };
+        let mut f = Fields {
+            table: t,
+            used: vec![false; t.len()],
+            allowed: Vec::new(),
+        };
         let key = format!("groups[{gi}].axes");
-        let axes_v = f.get("axes").ok_or_else(|| SpecError::at(&key, g.span, format!("`{key}` is missing")))?;
+        let axes_v = f
+            .get("axes")
+            .ok_or_else(|| SpecError::at(&key, g.span, format!("`{key}` is missing")))?;
         let Value::Array(ax) = &axes_v.value else {
             return Err(type_error(&key, "an array of axis indices", axes_v));
         };
         if ax.is_empty() {
-            return Err(SpecError::at(&key, axes_v.span, format!("`{key}` is empty")));
+            return Err(SpecError::at(
+                &key,
+                axes_v.span,
+                format!("`{key}` is empty"),
+            ));
         }
         let mut axes = Vec::new();
         for a in ax {
             let i = integer(&key, a)?;
             if i < 0 || i as usize >= ndims {
-                return Err(SpecError::at(&key, a.span, format!("`{key}`: axis {i} does not exist (dims has {ndims} axes)")));
+                return Err(SpecError::at(
+                    &key,
+                    a.span,
+                    format!("`{key}`: axis {i} does not exist (dims has {ndims} axes)"),
+                ));
             }
             if seen[i as usize] {
-                return Err(SpecError::at(&key, a.span, format!("`{key}`: axis {i} is listed twice")));
+                return Err(SpecError::at(
+                    &key,
+                    a.span,
+                    format!("`{key}`: axis {i} is listed twice"),
+                ));
             }
             seen[i as usize] = true;
             axes.push(i as usize);
@@ -498,7 +622,11 @@ fn parse_groups(v: &Spanned<Value>, ndims: usize) -> Result<Vec<Group>, SpecErro
         groups.push(Group { axes, sigma });
     }
     if let Some(missing) = seen.iter().position(|s| !s) {
-        return Err(SpecError::at("groups", v.span, format!("`groups`: axis {missing} is missing from every group")));
+        return Err(SpecError::at(
+            "groups",
+            v.span,
+            format!("`groups`: axis {missing} is missing from every group"),
+        ));
     }
     Ok(groups)
 }
@@ -508,13 +636,17 @@ fn check_work(spec: &TextureSpec, span: Option<Span>) -> Result<(), SpecError> {
     let n = spec.texels() as u64;
     let group_work = |axes: &[usize], sigma: f64| -> u64 {
         let r = (-2.0 * sigma * sigma * crate::vac::DEFAULT_CUTOFF.ln()).sqrt() as u64;
-        axes.iter().map(|&a| (2 * r + 1).min(spec.dims[a] as u64)).product()
+        axes.iter()
+            .map(|&a| (2 * r + 1).min(spec.dims[a] as u64))
+            .product()
     };
     let fp = match &spec.kind {
-        Kind::Blue2d { sigma, .. } | Kind::Independent2d { sigma, .. } | Kind::Golden { sigma, .. } => {
-            group_work(&[0, 1], *sigma)
-        }
-        Kind::Stbn { sigma_xy, sigma_t, .. } => group_work(&[0, 1], *sigma_xy) + group_work(&[2], *sigma_t),
+        Kind::Blue2d { sigma, .. }
+        | Kind::Independent2d { sigma, .. }
+        | Kind::Golden { sigma, .. } => group_work(&[0, 1], *sigma),
+        Kind::Stbn {
+            sigma_xy, sigma_t, ..
+        } => group_work(&[0, 1], *sigma_xy) + group_work(&[2], *sigma_t),
         Kind::Vac { groups, .. } => groups.iter().map(|g| group_work(&g.axes, g.sigma)).sum(),
         Kind::White => 1,
     };

@@ -1,6 +1,6 @@
 //! Reading spec files: `[[texture]]` tables with byte spans, so errors point at file, line and key.
 
-use super::{SpecError, Span, Spanned, Table, TextureSpec, Value, from_table};
+use super::{Span, Spanned, SpecError, Table, TextureSpec, Value, from_table};
 use toml::de::{DeTable, DeValue};
 
 /// A parsed spec file.
@@ -13,7 +13,10 @@ pub struct SpecFile {
 }
 
 fn span(r: std::ops::Range<usize>) -> Option<Span> {
-    Some(Span { start: r.start, end: r.end })
+    Some(Span {
+        start: r.start,
+        end: r.end,
+    })
 }
 
 fn convert(v: &toml::Spanned<DeValue<'_>>) -> Result<Spanned<Value>, SpecError> {
@@ -25,9 +28,15 @@ fn convert(v: &toml::Spanned<DeValue<'_>>) -> Result<Spanned<Value>, SpecError> 
                 Some(b) => (true, b.to_string()),
                 None => (false, digits.trim_start_matches('+').to_string()),
             };
-            let body = body.trim_start_matches("0x").trim_start_matches("0o").trim_start_matches("0b");
-            let x = i64::from_str_radix(body, i.radix())
-                .map_err(|_| SpecError { message: format!("integer `{}` is out of range", i.as_str()), key: None, span: span(v.span()) })?;
+            let body = body
+                .trim_start_matches("0x")
+                .trim_start_matches("0o")
+                .trim_start_matches("0b");
+            let x = i64::from_str_radix(body, i.radix()).map_err(|_| SpecError {
+                message: format!("integer `{}` is out of range", i.as_str()),
+                key: None,
+                span: span(v.span()),
+            })?;
             Value::Int(if neg { -x } else { x })
         }
         DeValue::Float(f) => {
@@ -36,24 +45,43 @@ fn convert(v: &toml::Spanned<DeValue<'_>>) -> Result<Spanned<Value>, SpecError> 
                 "inf" => f64::INFINITY,
                 "-inf" => f64::NEG_INFINITY,
                 "nan" | "-nan" => f64::NAN,
-                t => t.parse().map_err(|_| SpecError { message: format!("bad float `{s}`"), key: None, span: span(v.span()) })?,
+                t => t.parse().map_err(|_| SpecError {
+                    message: format!("bad float `{s}`"),
+                    key: None,
+                    span: span(v.span()),
+                })?,
             };
             Value::Float(x)
         }
         DeValue::Boolean(b) => Value::Bool(*b),
         DeValue::Datetime(_) => {
-            return Err(SpecError { message: "dates are not spec values".into(), key: None, span: span(v.span()) });
+            return Err(SpecError {
+                message: "dates are not spec values".into(),
+                key: None,
+                span: span(v.span()),
+            });
         }
         DeValue::Array(a) => Value::Array(a.iter().map(convert).collect::<Result<_, _>>()?),
         DeValue::Table(t) => Value::Table(convert_table(t)?),
     };
-    Ok(Spanned { value, span: span(v.span()) })
+    Ok(Spanned {
+        value,
+        span: span(v.span()),
+    })
 }
 
 fn convert_table(t: &DeTable<'_>) -> Result<Table, SpecError> {
     let mut out: Table = t
         .iter()
-        .map(|(k, v)| Ok((Spanned { value: k.get_ref().to_string(), span: span(k.span()) }, convert(v)?)))
+        .map(|(k, v)| {
+            Ok((
+                Spanned {
+                    value: k.get_ref().to_string(),
+                    span: span(k.span()),
+                },
+                convert(v)?,
+            ))
+        })
         .collect::<Result<_, SpecError>>()?;
     out.sort_by_key(|(k, _)| k.span.map_or(0, |s| s.start));
     Ok(out)
@@ -75,12 +103,23 @@ pub fn parse_toml(text: &str) -> Result<SpecFile, SpecError> {
             ("texture", Value::Array(items)) => {
                 for item in items {
                     let Value::Table(t) = &item.value else {
-                        return Err(SpecError::at("texture", item.span, "`texture` entries must be tables ([[texture]])"));
+                        return Err(SpecError::at(
+                            "texture",
+                            item.span,
+                            "`texture` entries must be tables ([[texture]])",
+                        ));
                     };
                     let spec = from_table(t, None)?;
                     if textures.iter().any(|s: &TextureSpec| s.name == spec.name) {
-                        let at = t.iter().find(|(k, _)| k.value == "name").and_then(|(_, v)| v.span);
-                        return Err(SpecError::at("name", at, format!("duplicate texture name `{}`", spec.name)));
+                        let at = t
+                            .iter()
+                            .find(|(k, _)| k.value == "name")
+                            .and_then(|(_, v)| v.span);
+                        return Err(SpecError::at(
+                            "name",
+                            at,
+                            format!("duplicate texture name `{}`", spec.name),
+                        ));
                     }
                     textures.push(spec);
                 }
@@ -93,10 +132,15 @@ pub fn parse_toml(text: &str) -> Result<SpecFile, SpecError> {
                 return Err(SpecError::at(
                     key,
                     k.span,
-                    format!("unknown top-level key `{key}`{hint}; a spec file holds [[texture]] tables and an optional cache_dir = \"…\""),
+                    format!(
+                        "unknown top-level key `{key}`{hint}; a spec file holds [[texture]] tables and an optional cache_dir = \"…\""
+                    ),
                 ));
             }
         }
     }
-    Ok(SpecFile { textures, cache_dir })
+    Ok(SpecFile {
+        textures,
+        cache_dir,
+    })
 }

@@ -69,11 +69,18 @@ impl Value {
             toml::Value::String(s) => Value::Str(s.clone()),
             toml::Value::Boolean(b) => Value::Bool(*b),
             toml::Value::Array(a) => Value::Array(
-                a.iter().map(|x| Value::from_toml(x).map(Spanned::bare)).collect::<Result<_, _>>()?,
+                a.iter()
+                    .map(|x| Value::from_toml(x).map(Spanned::bare))
+                    .collect::<Result<_, _>>()?,
             ),
             toml::Value::Table(t) => Value::Table(
                 t.iter()
-                    .map(|(k, x)| Ok((Spanned::bare(k.clone()), Spanned::bare(Value::from_toml(x)?))))
+                    .map(|(k, x)| {
+                        Ok((
+                            Spanned::bare(k.clone()),
+                            Spanned::bare(Value::from_toml(x)?),
+                        ))
+                    })
                     .collect::<Result<_, String>>()?,
             ),
             toml::Value::Datetime(_) => return Err("dates are not spec values".into()),

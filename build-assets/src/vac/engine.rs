@@ -72,7 +72,6 @@ fn pack(key: i64, tie: u32, idx: usize) -> u128 {
     (bias(key) as u128) << 64 | (tie as u128) << 32 | idx as u128
 }
 
-
 impl<'f> Engine<'f> {
     pub(crate) fn new(axes: &[Axis], fp: &'f Footprint, tie: Vec<u32>) -> Self {
         let sizes: Vec<usize> = axes.iter().map(|a| a.size).collect();
@@ -85,7 +84,11 @@ impl<'f> Engine<'f> {
         for g in &fp.groups {
             let k = g.axes.len();
             for (j, &a) in g.axes.iter().enumerate() {
-                let m = g.offsets.chunks(k).map(|o| o[j].unsigned_abs() as usize).max();
+                let m = g
+                    .offsets
+                    .chunks(k)
+                    .map(|o| o[j].unsigned_abs() as usize)
+                    .max();
                 pad[a] = pad[a].max(m.unwrap_or(0));
             }
         }
@@ -114,18 +117,26 @@ impl<'f> Engine<'f> {
             pad,
             sizes,
             strides,
-            texels: tie.iter().map(|&t| Texel { energy: 0, tie: t, on: false }).collect(),
+            texels: tie
+                .iter()
+                .map(|&t| Texel {
+                    energy: 0,
+                    tie: t,
+                    on: false,
+                })
+                .collect(),
             k_field: None,
         };
         if axes.iter().any(|a| !a.toroidal) {
             // K(p): the energy every texel would give p. Computed by splatting each texel's
             // footprint into itself, so open borders are counted exactly as in the engine.
-            let mut k = vec![0i64; n];
-            for p in 0..n {
-                let mut s = 0;
-                e.for_each(p, |_, w| s += w);
-                k[p] = s;
-            }
+            let k = (0..n)
+                .map(|p| {
+                    let mut s = 0;
+                    e.for_each(p, |_, w| s += w);
+                    s
+                })
+                .collect();
             e.k_field = Some(k);
         }
         e
@@ -135,8 +146,8 @@ impl<'f> Engine<'f> {
     #[inline(always)]
     fn for_each(&self, p: usize, mut f: impl FnMut(usize, i64)) {
         let mut coord = [0usize; 8];
-        for a in 0..self.sizes.len() {
-            coord[a] = (p / self.strides[a]) % self.sizes[a];
+        for (c, (&stride, &size)) in coord.iter_mut().zip(self.strides.iter().zip(&self.sizes)) {
+            *c = (p / stride) % size;
         }
         for g in &self.fp.groups {
             let mut base = p;
@@ -172,8 +183,8 @@ impl<'f> Engine<'f> {
                     'entry: for (o, &w) in g.offsets.chunks_exact(k).zip(&g.weights) {
                         let mut q = base;
                         for (j, &a) in g.axes.iter().enumerate() {
-                            let v = self.wrap[a][(coord[a] as isize + o[j] as isize) as usize
-                                + self.pad[a]];
+                            let v = self.wrap[a]
+                                [(coord[a] as isize + o[j] as isize) as usize + self.pad[a]];
                             if v == INVALID {
                                 continue 'entry;
                             }
@@ -220,13 +231,19 @@ impl<'f> Engine<'f> {
     }
 
     fn key(&self, p: usize, voids: bool, phase3: bool) -> u128 {
-        if voids { self.void_key(p, phase3) } else { self.cluster_key(p) }
+        if voids {
+            self.void_key(p, phase3)
+        } else {
+            self.cluster_key(p)
+        }
     }
 
     /// A queue of every off texel (`voids`) or every on texel, with fresh keys.
     fn queue(&self, voids: bool, phase3: bool) -> CandidateQueue {
         let n = self.texels.len();
-        let keys = (0..n).filter(|&p| self.texels[p].on != voids).map(|p| self.key(p, voids, phase3));
+        let keys = (0..n)
+            .filter(|&p| self.texels[p].on != voids)
+            .map(|p| self.key(p, voids, phase3));
         CandidateQueue::new(n, keys)
     }
 
@@ -266,7 +283,10 @@ pub fn rank(
     let n: usize = axes.iter().map(|a| a.size).product();
     let mut rng = SplitMix64::new(seed);
     let tie = permutation(n, &mut rng);
-    let mut stats = RunStats { footprint: fp.len(), ..RunStats::default() };
+    let mut stats = RunStats {
+        footprint: fp.len(),
+        ..RunStats::default()
+    };
     if n <= 1 {
         return (vec![0; n], stats);
     }
@@ -349,7 +369,7 @@ pub fn rank(
         let p = e.take(&mut voids, true, phase3);
         rank[p] = r as u32;
         e.toggle(p, true, |_, _| {});
-        if (r as u64 + 1) % tick == 0 {
+        if (r as u64 + 1).is_multiple_of(tick) {
             progress(r as u64 + 1, total);
         }
     }

@@ -51,7 +51,11 @@ pub struct Group {
 /// line (open axis: `-(n−1) ..= n−1`), clipped to `radius`.
 pub fn offset_range(axis: Axis, radius: i64) -> (i64, i64) {
     let n = axis.size as i64;
-    let (lo, hi) = if axis.toroidal { (-((n - 1) / 2), n / 2) } else { (-(n - 1), n - 1) };
+    let (lo, hi) = if axis.toroidal {
+        (-((n - 1) / 2), n / 2)
+    } else {
+        (-(n - 1), n - 1)
+    };
     (lo.max(-radius), hi.min(radius))
 }
 
@@ -78,7 +82,10 @@ pub struct Footprint {
 impl Footprint {
     /// Builds the footprints. `cutoff = 0` keeps every offset that reaches a distinct texel.
     pub fn new(axes: &[Axis], groups: &[Group], cutoff: f64) -> Self {
-        let groups = groups.iter().map(|g| GroupFootprint::new(axes, g, cutoff)).collect();
+        let groups = groups
+            .iter()
+            .map(|g| GroupFootprint::new(axes, g, cutoff))
+            .collect();
         Self { groups }
     }
 
@@ -102,12 +109,17 @@ impl Footprint {
 impl GroupFootprint {
     fn new(axes: &[Axis], group: &Group, cutoff: f64) -> Self {
         let radius = if cutoff > 0.0 {
-            (-2.0 * group.sigma * group.sigma * cutoff.ln()).sqrt().floor() as i64
+            (-2.0 * group.sigma * group.sigma * cutoff.ln())
+                .sqrt()
+                .floor() as i64
         } else {
             i64::MAX / 4
         };
-        let ranges: Vec<(i64, i64)> =
-            group.axes.iter().map(|&a| offset_range(axes[a], radius)).collect();
+        let ranges: Vec<(i64, i64)> = group
+            .axes
+            .iter()
+            .map(|&a| offset_range(axes[a], radius))
+            .collect();
         let mut offsets = Vec::new();
         let mut weights = Vec::new();
         let mut dropped = 0.0;
@@ -137,15 +149,24 @@ impl GroupFootprint {
             // by the Gaussian's tail mass outside the radius along each axis.
             dropped += tail_bound(group.sigma, radius, group.axes.len());
         }
-        Self { axes: group.axes.clone(), offsets, weights, dropped }
+        Self {
+            axes: group.axes.clone(),
+            offsets,
+            weights,
+            dropped,
+        }
     }
 }
 
 /// A bound on `Σ exp(−|d|²/2σ²)` over integer offsets with some `|d_i| > radius` in `dims`
 /// dimensions: `dims · 2 · Σ_{k>radius} g(k) · (Σ_k g(k))^(dims−1)`.
 fn tail_bound(sigma: f64, radius: i64, dims: usize) -> f64 {
-    let line: f64 = (-200..=200).map(|k: i64| gaussian((k * k) as f64, sigma)).sum();
-    let tail: f64 = (radius + 1..radius + 200).map(|k| gaussian((k * k) as f64, sigma)).sum();
+    let line: f64 = (-200..=200)
+        .map(|k: i64| gaussian((k * k) as f64, sigma))
+        .sum();
+    let tail: f64 = (radius + 1..radius + 200)
+        .map(|k| gaussian((k * k) as f64, sigma))
+        .sum();
     dims as f64 * 2.0 * tail * line.powi(dims as i32 - 1)
 }
 
@@ -156,29 +177,71 @@ mod tests {
     #[test]
     fn toroidal_offsets_reach_each_texel_once() {
         for n in 1..9 {
-            let (lo, hi) = offset_range(Axis { size: n, toroidal: true }, 100);
+            let (lo, hi) = offset_range(
+                Axis {
+                    size: n,
+                    toroidal: true,
+                },
+                100,
+            );
             assert_eq!((hi - lo + 1) as usize, n);
         }
     }
 
     #[test]
     fn untruncated_footprint_covers_the_torus() {
-        let axes = [Axis { size: 5, toroidal: true }, Axis { size: 4, toroidal: true }];
-        let f = Footprint::new(&axes, &[Group { axes: vec![0, 1], sigma: 1.9 }], 0.0);
+        let axes = [
+            Axis {
+                size: 5,
+                toroidal: true,
+            },
+            Axis {
+                size: 4,
+                toroidal: true,
+            },
+        ];
+        let f = Footprint::new(
+            &axes,
+            &[Group {
+                axes: vec![0, 1],
+                sigma: 1.9,
+            }],
+            0.0,
+        );
         assert_eq!(f.len(), 20);
         assert_eq!(f.dropped_weight(), 0.0);
     }
 
     #[test]
     fn truncation_drops_only_small_weights() {
-        let axes = [Axis { size: 64, toroidal: true }, Axis { size: 64, toroidal: true }];
-        let g = [Group { axes: vec![0, 1], sigma: 1.9 }];
+        let axes = [
+            Axis {
+                size: 64,
+                toroidal: true,
+            },
+            Axis {
+                size: 64,
+                toroidal: true,
+            },
+        ];
+        let g = [Group {
+            axes: vec![0, 1],
+            sigma: 1.9,
+        }];
         let f = Footprint::new(&axes, &g, DEFAULT_CUTOFF);
         let min = *f.groups[0].weights.iter().min().unwrap();
         assert!(min as f64 / ENERGY_SCALE >= DEFAULT_CUTOFF);
         let full = Footprint::new(&axes, &g, 0.0);
-        let kept: f64 = f.groups[0].weights.iter().map(|&w| w as f64 / ENERGY_SCALE).sum();
-        let all: f64 = full.groups[0].weights.iter().map(|&w| w as f64 / ENERGY_SCALE).sum();
+        let kept: f64 = f.groups[0]
+            .weights
+            .iter()
+            .map(|&w| w as f64 / ENERGY_SCALE)
+            .sum();
+        let all: f64 = full.groups[0]
+            .weights
+            .iter()
+            .map(|&w| w as f64 / ENERGY_SCALE)
+            .sum();
         assert!(f.dropped_weight() >= all - kept - 1e-9);
         assert!(f.dropped_weight() < 0.05, "{}", f.dropped_weight());
     }

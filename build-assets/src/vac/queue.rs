@@ -43,8 +43,15 @@ impl CandidateQueue {
             lists[key_index(k) >> CHUNK_BITS].push(Reverse(k));
             len += 1;
         }
-        let heaps: Vec<BinaryHeap<Reverse<u128>>> = lists.into_iter().map(BinaryHeap::from).collect();
-        let top = MinTree::new(heaps.iter().map(|h| h.peek().map_or(ABSENT, |r| r.0)).collect::<Vec<_>>().into_iter());
+        let heaps: Vec<BinaryHeap<Reverse<u128>>> =
+            lists.into_iter().map(BinaryHeap::from).collect();
+        let top = MinTree::new(
+            heaps
+                .iter()
+                .map(|h| h.peek().map_or(ABSENT, |r| r.0))
+                .collect::<Vec<_>>()
+                .into_iter(),
+        );
         Self { heaps, top, len }
     }
 
@@ -108,7 +115,9 @@ mod tests {
     fn pops_in_order() {
         let mut rng = SplitMix64::new(2);
         let n = 3 * CHUNK + 17;
-        let keys: Vec<u128> = (0..n).map(|i| (rng.next_u64() as u128) << 64 | i as u128).collect();
+        let keys: Vec<u128> = (0..n)
+            .map(|i| (rng.next_u64() as u128) << 64 | i as u128)
+            .collect();
         let mut q = CandidateQueue::new(n, keys.iter().copied());
         let mut sorted = keys.clone();
         sorted.sort_unstable();

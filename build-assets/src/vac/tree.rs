@@ -65,7 +65,11 @@ mod tests {
         let mut t = MinTree::new(keys.iter().copied());
         for step in 0..20_000 {
             let i = rng.below(n as u64) as usize;
-            keys[i] = if step % 7 == 0 { ABSENT } else { rng.next_u64() as u128 };
+            keys[i] = if step % 7 == 0 {
+                ABSENT
+            } else {
+                rng.next_u64() as u128
+            };
             t.set(i, keys[i]);
             assert_eq!(t.min(), *keys.iter().min().unwrap());
         }

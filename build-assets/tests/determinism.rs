@@ -1,0 +1,66 @@
+//! Same spec, same bytes: across runs, thread counts, and (through the golden digests below)
+//! debug and release builds and machines.
+
+mod common;
+use build_assets::generate;
+use common::spec;
+
+/// FNV-1a 64: a digest for byte-exact goldens.
+fn fnv(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
+    })
+}
+
+const SPECS: &[&str] = &[
+    "kind = \"blue2d\"\ndims = [32, 32]\nseed = 1\nformat = \"u16\"",
+    "kind = \"stbn\"\ndims = [16, 16, 8]\nseed = 7\nformat = \"u8\"",
+    "kind = \"vac\"\ndims = [8, 8, 4, 4]\nseed = 3\nformat = \"f32\"\ngroups = [{ axes = [0, 1] }, { axes = [2] }, { axes = [3] }]",
+    "kind = \"independent2d\"\ndims = [16, 16, 4]\nseed = 2",
+    "kind = \"golden\"\ndims = [16, 16, 4]\nseed = 2\nformat = \"u16\"",
+    "kind = \"white\"\ndims = [16, 16, 4]\nseed = 2",
+];
+
+#[test]
+fn output_does_not_depend_on_the_thread_count() {
+    for body in SPECS {
+        let s = spec(body);
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap()
+            .install(|| generate(&s, &mut |_, _| {}));
+        let three = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap()
+            .install(|| generate(&s, &mut |_, _| {}));
+        assert_eq!(one.data, three.data, "{body}");
+    }
+}
+
+/// Byte-exact goldens. If a change alters these on purpose, bump
+/// `build_assets::ALGORITHM_VERSION` (cached textures must regenerate) and update the digests.
+#[test]
+fn output_matches_the_golden_digests() {
+    let digests: Vec<u64> = SPECS
+        .iter()
+        .map(|b| fnv(&generate(&spec(b), &mut |_, _| {}).data))
+        .collect();
+    eprintln!("{digests:#018x?}");
+    assert_eq!(
+        digests,
+        GOLDEN,
+        "generator output changed: bump ALGORITHM_VERSION (now {}) and update GOLDEN",
+        build_assets::ALGORITHM_VERSION
+    );
+}
+
+const GOLDEN: [u64; 6] = [
+    0xf72c7f7c23bab7cd,
+    0x5005bacaa1866091,
+    0x2fe111ec5bd47c1d,
+    0xc7873e02a791b413,
+    0xee9707c42f41c431,
+    0x678bc41f284dccd3,
+];
