@@ -1,0 +1,165 @@
+//! Typed views of baked masks: dims are const generics, so every wrap is resolved at compile time
+//! (a bit mask for power-of-two sizes) and a lookup is one multiply-add and one load.
+//!
+//! Layout: x fastest, then y, then further axes; texels little-endian (see [`Texel`]).
+
+use crate::coord::Coord;
+use crate::sequence::{r2_point, scale};
+use crate::texel::Texel;
+use core::marker::PhantomData;
+
+/// Why bytes cannot back a view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SizeMismatch {
+    /// Bytes the dims and texel type need.
+    pub expected: usize,
+    /// Bytes given.
+    pub actual: usize,
+}
+
+macro_rules! mask {
+    (
+        $(#[$doc:meta])*
+        $name:ident, $n:literal, [$($d:ident),+], [$($c:ident),+]
+    ) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug)]
+        pub struct $name<T: Texel, $(const $d: u32),+> {
+            bytes: &'static [u8],
+            _texel: PhantomData<T>,
+        }
+
+        impl<T: Texel, $(const $d: u32),+> $name<T, $($d),+> {
+            /// Texels in the mask.
+            pub const TEXELS: usize = 1 $(* $d as usize)+;
+            /// Sizes, x first.
+            pub const DIMS: [u32; $n] = [$($d),+];
+
+            /// A view over `bytes`; fails to compile (in a `const`/`static`) or panics (at run
+            /// time) when the length does not match the dims and texel type.
+            pub const fn new(bytes: &'static [u8]) -> Self {
+                assert!(bytes.len() == Self::TEXELS * T::BYTES, "mask bytes do not match its dims and texel type");
+                $(assert!($d > 0, "mask dims must be positive");)+
+                Self { bytes, _texel: PhantomData }
+            }
+
+            /// A view over `bytes`, or the size mismatch.
+            pub const fn try_new(bytes: &'static [u8]) -> Result<Self, SizeMismatch> {
+                if bytes.len() != Self::TEXELS * T::BYTES $(|| $d == 0)+ {
+                    return Err(SizeMismatch { expected: Self::TEXELS * T::BYTES, actual: bytes.len() });
+                }
+                Ok(Self { bytes, _texel: PhantomData })
+            }
+
+            /// The raw little-endian bytes.
+            pub const fn bytes(&self) -> &'static [u8] {
+                self.bytes
+            }
+
+            #[inline(always)]
+            fn index(&self, $($c: u32),+) -> usize {
+                let mut i = 0usize;
+                let mut stride = 1usize;
+                $(
+                    i += $c as usize * stride;
+                    stride *= $d as usize;
+                )+
+                let _ = stride;
+                i
+            }
+
+            /// The texel at the given coordinates, each wrapped toroidally onto its axis.
+            #[inline(always)]
+            pub fn get<C: Coord>(&self, $($c: C),+) -> T {
+                T::read(self.bytes, self.index($($c.wrap($d)),+))
+            }
+
+            /// Channel 0 of [`get`](Self::get) normalised to `[0, 1)`.
+            #[inline(always)]
+            pub fn get_unit<C: Coord>(&self, $($c: C),+) -> f32 {
+                self.get($($c),+).unit(0)
+            }
+
+            /// Channel `c` of a unit-vector texture (stored as `0.5 + 0.5·v`) decoded to `[-1, 1]`.
+            #[inline(always)]
+            pub fn get_signed<C: Coord>(&self, $($c: C),+, channel: usize) -> f32 {
+                let t = self.get($($c),+);
+                (t.unit(channel) * T::SIGNED_SCALE * 2.0 - 1.0).clamp(-1.0, 1.0)
+            }
+
+            /// Whether the texel is "on" at coverage `p`: its value is below `p`. For a mask with
+            /// a flat histogram the on fraction of every slice is `p` to within one texel.
+            #[inline(always)]
+            pub fn threshold<C: Coord>(&self, $($c: C),+, p: f32) -> bool {
+                self.get_unit($($c),+) < p
+            }
+        }
+    };
+}
+
+mask!(
+    /// A 2D mask: `get(x, y)`.
+    Mask2, 2, [W, H], [x, y]
+);
+mask!(
+    /// A 3D mask over (x, y, t): spatiotemporal masks, one 2D slice per frame.
+    Mask3, 3, [W, H, D], [x, y, t]
+);
+mask!(
+    /// A 4D mask over (x, y, z, w), e.g. 2D×1D×1D or 2D×2D blue noise.
+    Mask4, 4, [W, H, D, E], [x, y, z, w]
+);
+
+impl<T: Texel, const W: u32, const H: u32> Mask2<T, W, H> {
+    /// The k-th independent value of pixel (x, y): the texel offset by the k-th R2 point scaled
+    /// to the mask (STBN §5.2; FAST §6). `get_k(x, y, 0) == get(x, y)`.
+    #[inline(always)]
+    pub fn get_k<C: Coord>(&self, x: C, y: C, k: u32) -> T {
+        let (ox, oy) = r2_point(k);
+        let xi = (x.wrap(W) + scale(ox, W)).wrap(W);
+        let yi = (y.wrap(H) + scale(oy, H)).wrap(H);
+        T::read(self.bytes, self.index(xi, yi))
+    }
+}
+
+impl<T: Texel, const W: u32, const H: u32, const D: u32> Mask3<T, W, H, D> {
+    /// The k-th independent value of pixel (x, y) in frame t: the texel offset spatially by the
+    /// k-th R2 point scaled to the mask (STBN §5.2; FAST §6). `get_k(x, y, t, 0) == get(x, y, t)`.
+    /// Exact for every `k < 2^32` (see [`sequence`](crate::sequence)).
+    #[inline(always)]
+    pub fn get_k<C: Coord>(&self, x: C, y: C, t: C, k: u32) -> T {
+        let (ox, oy) = r2_point(k);
+        let xi = (x.wrap(W) + scale(ox, W)).wrap(W);
+        let yi = (y.wrap(H) + scale(oy, H)).wrap(H);
+        T::read(self.bytes, self.index(xi, yi, t.wrap(D)))
+    }
+
+    /// Channel 0 of [`get_k`](Self::get_k) normalised to `[0, 1)`.
+    #[inline(always)]
+    pub fn get_k_unit<C: Coord>(&self, x: C, y: C, t: C, k: u32) -> f32 {
+        self.get_k(x, y, t, k).unit(0)
+    }
+
+    /// The k-th independent *pair* of values of a pixel from a scalar mask: R2-offset reads
+    /// `2k` and `2k + 1` (STBN §5.4: scalar masks feeding 2D warps such as
+    /// [`warp::cosine_hemisphere`](crate::warp::cosine_hemisphere)).
+    #[inline(always)]
+    pub fn get_pair_unit<C: Coord>(&self, x: C, y: C, t: C, k: u32) -> [f32; 2] {
+        let k2 = k.wrapping_mul(2);
+        [
+            self.get_k_unit(x, y, t, k2),
+            self.get_k_unit(x, y, t, k2.wrapping_add(1)),
+        ]
+    }
+}
+
+impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, W, H, D, E> {
+    /// The k-th independent value of a pixel, as [`Mask3::get_k`].
+    #[inline(always)]
+    pub fn get_k<C: Coord>(&self, x: C, y: C, z: C, w: C, k: u32) -> T {
+        let (ox, oy) = r2_point(k);
+        let xi = (x.wrap(W) + scale(ox, W)).wrap(W);
+        let yi = (y.wrap(H) + scale(oy, H)).wrap(H);
+        T::read(self.bytes, self.index(xi, yi, z.wrap(D), w.wrap(E)))
+    }
+}

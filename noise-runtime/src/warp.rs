@@ -1,0 +1,58 @@
+//! Sample warps: from uniform numbers in `[0, 1]` to the distributions rendering needs.
+//!
+//! Every warp takes `ξ` in `[0, 1]` — exactly 0 and exactly 1 included — and returns finite
+//! points on (or in) its domain: inputs outside `[0, 1]` (or NaN) are clamped, square roots never
+//! see a negative argument, and directions are unit length to within `f32` rounding.
+
+use crate::math::{sincos_turns, sqrt};
+
+#[inline(always)]
+fn unit(u: f32) -> f32 {
+    if u.is_nan() { 0.0 } else { u.clamp(0.0, 1.0) }
+}
+
+/// Uniform point in the unit disk by Shirley and Chiu's concentric map (area-preserving, low
+/// distortion: strata of the square stay compact on the disk).
+#[inline]
+pub fn disk_concentric(u: f32, v: f32) -> [f32; 2] {
+    let a = 2.0 * unit(u) - 1.0;
+    let b = 2.0 * unit(v) - 1.0;
+    if a == 0.0 && b == 0.0 {
+        return [0.0, 0.0];
+    }
+    // r and θ (in turns) of the concentric map.
+    let (r, turns) = if a * a > b * b {
+        (a, b / a / 8.0)
+    } else {
+        (b, 0.25 - a / b / 8.0)
+    };
+    let (s, c) = sincos_turns(turns);
+    [r * c, r * s]
+}
+
+/// Uniform direction on the unit sphere: `z = 1 − 2u`, azimuth `2πv` (Archimedes' hat-box).
+#[inline]
+pub fn sphere_uniform(u: f32, v: f32) -> [f32; 3] {
+    let z = 1.0 - 2.0 * unit(u);
+    let r = sqrt(1.0 - z * z);
+    let (s, c) = sincos_turns(unit(v));
+    [r * c, r * s, z]
+}
+
+/// Uniform direction on the upper (`z ≥ 0`) unit hemisphere: `z = u`, azimuth `2πv`.
+#[inline]
+pub fn hemisphere_uniform(u: f32, v: f32) -> [f32; 3] {
+    let z = unit(u);
+    let r = sqrt(1.0 - z * z);
+    let (s, c) = sincos_turns(unit(v));
+    [r * c, r * s, z]
+}
+
+/// Cosine-weighted direction on the upper unit hemisphere (density `cos θ / π`) by Malley's
+/// method: a concentric disk point lifted to the hemisphere.
+#[inline]
+pub fn cosine_hemisphere(u: f32, v: f32) -> [f32; 3] {
+    let [x, y] = disk_concentric(u, v);
+    let z = sqrt(1.0 - x * x - y * y);
+    [x, y, z]
+}
