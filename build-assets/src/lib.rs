@@ -16,3 +16,8 @@ pub use spec::{SpecError, TextureSpec};
 pub use texture::Texture;
 pub mod analysis;
 pub mod export;
+pub mod bake;
+pub mod cache;
+pub mod codegen;
+
+pub use bake::{Bake, BakeError, bake};

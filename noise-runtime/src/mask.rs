@@ -163,3 +163,22 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, 
         T::read(self.bytes, self.index(xi, yi, z.wrap(D), w.wrap(E)))
     }
 }
+
+/// `bytes[offset..offset + len]` in a `const` context: the texel data of an included file that
+/// carries a header (cache entries). Panics at compile time when out of range.
+pub const fn payload(bytes: &'static [u8], offset: usize, len: usize) -> &'static [u8] {
+    bytes.split_at(offset).1.split_at(len).0
+}
+
+/// `include_bytes!` into a 16-byte-aligned static, as a `&'static [u8]` (what
+/// `include_bytes_aligned` does; kept here so the runtime stays dependency-free). Used by
+/// generated code; alignment lets vector loads of `u16`/`f32` texels take the fast path.
+#[macro_export]
+macro_rules! include_aligned {
+    ($path:expr) => {{
+        #[repr(C, align(16))]
+        struct Aligned<B: ?Sized>(B);
+        static ALIGNED: &Aligned<[u8]> = &Aligned(*include_bytes!($path));
+        &ALIGNED.0
+    }};
+}

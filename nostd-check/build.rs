@@ -1,0 +1,3 @@
+fn main() {
+    build_assets::bake("noise.toml").unwrap_or_else(|e| panic!("{e}"));
+}
