@@ -28,13 +28,19 @@ pub const HEADER: usize = 64;
 
 /// FNV-1a, 64-bit: keys and content hashes (fast, dependency-free, stable forever).
 pub fn fnv64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ b as u64).wrapping_mul(0x100_0000_01b3))
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
+    })
 }
 
 /// The cache key of a spec.
 pub fn key(spec: &TextureSpec) -> String {
     let canon = format!("v{ALGORITHM_VERSION};{}", spec.canonical());
-    format!("{:016x}{:016x}", fnv64(canon.as_bytes()), fnv64(&[canon.as_bytes(), b"#2"].concat()))
+    format!(
+        "{:016x}{:016x}",
+        fnv64(canon.as_bytes()),
+        fnv64(&[canon.as_bytes(), b"#2"].concat())
+    )
 }
 
 /// Where an entry came from.
@@ -85,7 +91,10 @@ pub fn target_dir(out_dir: Option<&Path>) -> Option<PathBuf> {
             if up.join("CACHEDIR.TAG").exists() || up.file_name().is_some_and(|n| n == "target") {
                 return Some(up.to_path_buf());
             }
-            return up.parent().map(Path::to_path_buf).or(Some(up.to_path_buf()));
+            return up
+                .parent()
+                .map(Path::to_path_buf)
+                .or(Some(up.to_path_buf()));
         }
         p = parent.to_path_buf();
     }
@@ -99,7 +108,11 @@ fn env_on(name: &str) -> bool {
 impl Cache {
     /// A cache in `dir` (offline when `NOISEBAKE_OFFLINE` is set).
     pub fn new(dir: impl Into<PathBuf>) -> Self {
-        Self { dir: dir.into(), offline: env_on("NOISEBAKE_OFFLINE"), warnings: Vec::new() }
+        Self {
+            dir: dir.into(),
+            offline: env_on("NOISEBAKE_OFFLINE"),
+            warnings: Vec::new(),
+        }
     }
 
     /// The cache a build uses: `NOISEBAKE_CACHE_DIR`, else `spec_dir`, else the target dir's
@@ -134,17 +147,31 @@ impl Cache {
             Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(None),
             Err(e) => return Err(format!("{}: {e}", path.display())),
         };
-        decode(&bytes, spec).map(Some).map_err(|why| format!("{}: {why}", path.display()))
+        decode(&bytes, spec)
+            .map(Some)
+            .map_err(|why| format!("{}: {why}", path.display()))
     }
 
     /// The texture of `spec`, from the cache or generated (once, under a lock) and stored.
     /// `progress` sees generation progress.
-    pub fn get(&mut self, spec: &TextureSpec, progress: &mut dyn FnMut(u64, u64)) -> Result<Entry, String> {
+    pub fn get(
+        &mut self,
+        spec: &TextureSpec,
+        progress: &mut dyn FnMut(u64, u64),
+    ) -> Result<Entry, String> {
         let path = self.path(spec);
         match self.read(spec) {
-            Ok(Some(texture)) => return Ok(Entry { texture, path, source: Source::Hit }),
+            Ok(Some(texture)) => {
+                return Ok(Entry {
+                    texture,
+                    path,
+                    source: Source::Hit,
+                });
+            }
             Ok(None) => {}
-            Err(why) => self.warnings.push(format!("corrupt cache entry, regenerating: {why}")),
+            Err(why) => self
+                .warnings
+                .push(format!("corrupt cache entry, regenerating: {why}")),
         }
         if self.offline {
             return Err(format!(
@@ -154,7 +181,8 @@ impl Cache {
                 path.display()
             ));
         }
-        fs::create_dir_all(&self.dir).map_err(|e| format!("cannot create cache dir {}: {e}", self.dir.display()))?;
+        fs::create_dir_all(&self.dir)
+            .map_err(|e| format!("cannot create cache dir {}: {e}", self.dir.display()))?;
         let lock_path = self.dir.join(format!("{}.lock", key(spec)));
         let lock = OpenOptions::new()
             .create(true)
@@ -162,15 +190,25 @@ impl Cache {
             .write(true)
             .open(&lock_path)
             .map_err(|e| format!("cannot open {}: {e}", lock_path.display()))?;
-        lock.lock().map_err(|e| format!("cannot lock {}: {e}", lock_path.display()))?;
+        lock.lock()
+            .map_err(|e| format!("cannot lock {}: {e}", lock_path.display()))?;
         // Another process may have finished the entry while we waited.
         if let Ok(Some(texture)) = self.read(spec) {
-            return Ok(Entry { texture, path, source: Source::Hit });
+            return Ok(Entry {
+                texture,
+                path,
+                source: Source::Hit,
+            });
         }
         let texture = generate(spec, progress);
-        write_entry(&path, &encode(&texture, spec)).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        write_entry(&path, &encode(&texture, spec))
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         drop(lock);
-        Ok(Entry { texture, path, source: Source::Generated })
+        Ok(Entry {
+            texture,
+            path,
+            source: Source::Generated,
+        })
     }
 }
 
@@ -196,7 +234,11 @@ fn decode(bytes: &[u8], spec: &TextureSpec) -> Result<Texture, String> {
     let u = |i: usize| u64::from_le_bytes(bytes[i..i + 8].try_into().expect("8 bytes")) as usize;
     let (len, hash, clen) = (u(8), u(16) as u64, u(24));
     if bytes.len() != HEADER + len + clen {
-        return Err(format!("truncated: {} bytes, header says {}", bytes.len(), HEADER + len + clen));
+        return Err(format!(
+            "truncated: {} bytes, header says {}",
+            bytes.len(),
+            HEADER + len + clen
+        ));
     }
     let data = &bytes[HEADER..HEADER + len];
     if fnv64(data) != hash {
@@ -206,9 +248,17 @@ fn decode(bytes: &[u8], spec: &TextureSpec) -> Result<Texture, String> {
         return Err("entry belongs to a different spec".into());
     }
     if len != spec.byte_len() {
-        return Err(format!("holds {len} bytes, the spec needs {}", spec.byte_len()));
+        return Err(format!(
+            "holds {len} bytes, the spec needs {}",
+            spec.byte_len()
+        ));
     }
-    Ok(Texture { name: spec.name.clone(), dims: spec.dims.clone(), format: spec.format, data: data.to_vec() })
+    Ok(Texture {
+        name: spec.name.clone(),
+        dims: spec.dims.clone(),
+        format: spec.format,
+        data: data.to_vec(),
+    })
 }
 
 fn write_entry(path: &Path, bytes: &[u8]) -> io::Result<()> {

@@ -12,7 +12,10 @@ pub fn view_type(spec: &TextureSpec, krate: &str) -> String {
         1 => format!("{krate}::Mask2<{texel}, {}, 1>", d[0]),
         2 => format!("{krate}::Mask2<{texel}, {}, {}>", d[0], d[1]),
         3 => format!("{krate}::Mask3<{texel}, {}, {}, {}>", d[0], d[1], d[2]),
-        _ => format!("{krate}::Mask4<{texel}, {}, {}, {}, {}>", d[0], d[1], d[2], d[3]),
+        _ => format!(
+            "{krate}::Mask4<{texel}, {}, {}, {}, {}>",
+            d[0], d[1], d[2], d[3]
+        ),
     }
 }
 
@@ -23,7 +26,11 @@ pub fn texel_type(f: Format) -> String {
         Scalar::U16 => "u16",
         Scalar::F32 => "f32",
     };
-    if f.channels == 1 { s.to_string() } else { format!("[{s}; {}]", f.channels) }
+    if f.channels == 1 {
+        s.to_string()
+    } else {
+        format!("[{s}; {}]", f.channels)
+    }
 }
 
 /// The item for one texture whose bytes are at `offset..offset + len` of the file `path`.
@@ -46,5 +53,9 @@ pub fn item(spec: &TextureSpec, vis: &str, path: &str, offset: usize, krate: &st
 pub fn placeholder(spec: &TextureSpec, vis: &str, krate: &str) -> String {
     let ty = view_type(spec, krate);
     let ctor = ty.split('<').next().unwrap_or(&ty);
-    format!("{vis}static {}: {ty} = {ctor}::new(&[0u8; {}]);\n", spec.name, spec.byte_len())
+    format!(
+        "{vis}static {}: {ty} = {ctor}::new(&[0u8; {}]);\n",
+        spec.name,
+        spec.byte_len()
+    )
 }

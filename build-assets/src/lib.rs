@@ -15,9 +15,9 @@ pub use generate::{ALGORITHM_VERSION, generate};
 pub use spec::{SpecError, TextureSpec};
 pub use texture::Texture;
 pub mod analysis;
-pub mod export;
 pub mod bake;
 pub mod cache;
 pub mod codegen;
+pub mod export;
 
 pub use bake::{Bake, BakeError, bake};

@@ -35,7 +35,10 @@ struct Ctx {
 impl Ctx {
     fn span(&mut self, s: PSpan) -> Option<Span> {
         self.spans.push(s);
-        Some(Span { start: self.spans.len() - 1, end: self.spans.len() })
+        Some(Span {
+            start: self.spans.len() - 1,
+            end: self.spans.len(),
+        })
     }
 
     fn value(&mut self, input: ParseStream) -> syn::Result<Spanned<Value>> {
@@ -49,13 +52,19 @@ impl Ctx {
                     content.parse::<Token![,]>()?;
                 }
             }
-            return Ok(Spanned { value: Value::Array(items), span: self.span(b.span.join()) });
+            return Ok(Spanned {
+                value: Value::Array(items),
+                span: self.span(b.span.join()),
+            });
         }
         if input.peek(syn::token::Brace) {
             let content;
             let b = braced!(content in input);
             let t = self.table(&content)?;
-            return Ok(Spanned { value: Value::Table(t), span: self.span(b.span.join()) });
+            return Ok(Spanned {
+                value: Value::Table(t),
+                span: self.span(b.span.join()),
+            });
         }
         let neg = input.peek(Token![-]);
         if neg {
@@ -69,7 +78,10 @@ impl Ctx {
                 "false" => Value::Bool(false),
                 s => Value::Str(s.to_string()),
             };
-            return Ok(Spanned { value: v, span: self.span(id.span()) });
+            return Ok(Spanned {
+                value: v,
+                span: self.span(id.span()),
+            });
         } else {
             input.parse()?
         };
@@ -82,9 +94,17 @@ impl Ctx {
             syn::Lit::Float(f) => Value::Float(sign * f.base10_parse::<f64>()?),
             syn::Lit::Str(s) => Value::Str(s.value()),
             syn::Lit::Bool(b) => Value::Bool(b.value),
-            _ => return Err(syn::Error::new(span, "expected a number, string, identifier, [array] or { table }")),
+            _ => {
+                return Err(syn::Error::new(
+                    span,
+                    "expected a number, string, identifier, [array] or { table }",
+                ));
+            }
         };
-        Ok(Spanned { value: v, span: self.span(span) })
+        Ok(Spanned {
+            value: v,
+            span: self.span(span),
+        })
     }
 
     fn table(&mut self, input: ParseStream) -> syn::Result<Table> {
@@ -103,7 +123,13 @@ impl Ctx {
             }
             let ks = self.span(key.span());
             let v = self.value(input)?;
-            t.push((Spanned { value: key.to_string(), span: ks }, v));
+            t.push((
+                Spanned {
+                    value: key.to_string(),
+                    span: ks,
+                },
+                v,
+            ));
             if !input.is_empty() {
                 input.parse::<Token![,]>()?;
             }
@@ -125,7 +151,13 @@ impl Parse for Input {
         if !input.is_empty() {
             input.parse::<Token![;]>()?;
         }
-        Ok(Input { vis, name, kind, table, spans: ctx.spans })
+        Ok(Input {
+            vis,
+            name,
+            kind,
+            table,
+            spans: ctx.spans,
+        })
     }
 }
 
@@ -133,8 +165,15 @@ impl Parse for Input {
 /// workspace target dir's `noisebake-cache` (`CARGO_TARGET_DIR`, else `target/` beside the
 /// outermost `Cargo.lock` above the crate).
 fn cache() -> Cache {
-    let manifest = std::env::var_os("CARGO_MANIFEST_DIR").map(PathBuf::from).unwrap_or_default();
-    let root = manifest.ancestors().filter(|d| d.join("Cargo.lock").exists()).last().unwrap_or(&manifest).to_path_buf();
+    let manifest = std::env::var_os("CARGO_MANIFEST_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_default();
+    let root = manifest
+        .ancestors()
+        .filter(|d| d.join("Cargo.lock").exists())
+        .last()
+        .unwrap_or(&manifest)
+        .to_path_buf();
     let target = target_dir(None).unwrap_or_else(|| root.join("target"));
     Cache::locate(None, None, &target).with_default_dir(target.join("noisebake-cache"))
 }
@@ -150,35 +189,74 @@ pub fn noise_texture(tokens: proc_macro::TokenStream) -> proc_macro::TokenStream
 }
 
 fn expand(input: Input) -> TokenStream {
-    let Input { vis, name, kind, mut table, spans } = input;
+    let Input {
+        vis,
+        name,
+        kind,
+        mut table,
+        spans,
+    } = input;
     let vis_s = quote!(#vis).to_string();
-    let vis_s = if vis_s.is_empty() { String::new() } else { format!("{vis_s} ") };
+    let vis_s = if vis_s.is_empty() {
+        String::new()
+    } else {
+        format!("{vis_s} ")
+    };
     let kind_span = spans.len();
     let mut spans = spans;
     spans.push(kind.span());
-    table.insert(0, (Spanned::bare("kind".into()), Spanned { value: Value::Str(kind.to_string()), span: Some(Span { start: kind_span, end: kind_span + 1 }) }));
+    table.insert(
+        0,
+        (
+            Spanned::bare("kind".into()),
+            Spanned {
+                value: Value::Str(kind.to_string()),
+                span: Some(Span {
+                    start: kind_span,
+                    end: kind_span + 1,
+                }),
+            },
+        ),
+    );
     if let Err(m) = spec::check_identifier(&name.to_string()) {
         return syn::Error::new(name.span(), m).to_compile_error();
     }
     let s = match spec::from_table(&table, Some(&name.to_string())) {
         Ok(s) => s,
         Err(e) => {
-            let at = e.span.and_then(|s| spans.get(s.start).copied()).unwrap_or(name.span());
+            let at = e
+                .span
+                .and_then(|s| spans.get(s.start).copied())
+                .unwrap_or(name.span());
             return syn::Error::new(at, e.message).to_compile_error();
         }
     };
     let mut cache = cache();
-    let code = if std::env::var_os("RUST_ANALYZER_INTERNALS_DO_NOT_USE").is_some() && cache.read(&s).ok().flatten().is_none() {
+    let code = if std::env::var_os("RUST_ANALYZER_INTERNALS_DO_NOT_USE").is_some()
+        && cache.read(&s).ok().flatten().is_none()
+    {
         codegen::placeholder(&s, &vis_s, "::noisebake")
     } else {
         match cache.get(&s, &mut |_, _| {}) {
-            Ok(entry) => codegen::item(&s, &vis_s, &entry.path.display().to_string(), HEADER, "::noisebake"),
+            Ok(entry) => codegen::item(
+                &s,
+                &vis_s,
+                &entry.path.display().to_string(),
+                HEADER,
+                "::noisebake",
+            ),
             Err(e) => {
-                let err = syn::Error::new(name.span(), format!("noisebake: {e}")).to_compile_error();
-                let ph: TokenStream = codegen::placeholder(&s, &vis_s, "::noisebake").parse().unwrap_or_default();
+                let err =
+                    syn::Error::new(name.span(), format!("noisebake: {e}")).to_compile_error();
+                let ph: TokenStream = codegen::placeholder(&s, &vis_s, "::noisebake")
+                    .parse()
+                    .unwrap_or_default();
                 return quote!(#err #ph);
             }
         }
     };
-    code.parse().unwrap_or_else(|e| syn::Error::new(name.span(), format!("noisebake generated bad code: {e}")).to_compile_error())
+    code.parse().unwrap_or_else(|e| {
+        syn::Error::new(name.span(), format!("noisebake generated bad code: {e}"))
+            .to_compile_error()
+    })
 }

@@ -53,8 +53,9 @@ pub fn sincos_turns(u: f32) -> (f32, f32) {
 /// Nearest integer to `v` (ties away from zero) for any finite `v`.
 #[inline]
 pub fn round_f64(v: f64) -> f64 {
-    if !(v.abs() < 4_503_599_627_370_496.0) {
-        return v; // already an integer (or not finite)
+    // At 2^52 and beyond every f64 is an integer; NaN and infinities pass through unchanged.
+    if v.is_nan() || v.abs() >= 4_503_599_627_370_496.0 {
+        return v;
     }
     let t = v as i64 as f64;
     let d = v - t;
@@ -70,7 +71,7 @@ pub fn round_f64(v: f64) -> f64 {
 /// `v − ⌊v⌋` in `[0, 1)` for any finite `v`.
 #[inline]
 pub fn fract_f64(v: f64) -> f64 {
-    if !(v.abs() < 4_503_599_627_370_496.0) {
+    if v.is_nan() || v.abs() >= 4_503_599_627_370_496.0 {
         return 0.0;
     }
     let t = v as i64 as f64;

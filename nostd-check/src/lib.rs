@@ -8,7 +8,10 @@ noisebake::noise_texture!(pub INLINE = blue2d { dims: [8, 8], format: u8 });
 /// Touches every module of the runtime.
 pub fn use_everything(x: i32, y: i32, frame: u32) -> f32 {
     let m = MASK.get_k_unit(x, y, frame as i32, frame) + INLINE.get_unit(x, y);
-    let g = noisebake::ldg::r2(x, y) + noisebake::ldg::plus(x, y) + noisebake::ldg::ign(x, y) + noisebake::ldg::bayer::<4>(x, y);
+    let g = noisebake::ldg::r2(x, y)
+        + noisebake::ldg::plus(x, y)
+        + noisebake::ldg::ign(x, y)
+        + noisebake::ldg::bayer::<4>(x, y);
     let frac = |v: f32| noisebake::math::fract_f64(v as f64) as f32;
     let d = noisebake::warp::cosine_hemisphere(frac(m), frac(g));
     let s = noisebake::sequence::to_unit(noisebake::sequence::golden(frame));
