@@ -2,15 +2,9 @@
 //! debug and release builds and machines.
 
 mod common;
+use build_assets::cache::fnv64 as fnv;
 use build_assets::generate;
 use common::spec;
-
-/// FNV-1a 64: a digest for byte-exact goldens.
-fn fnv(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
-    })
-}
 
 const SPECS: &[&str] = &[
     "kind = \"blue2d\"\ndims = [32, 32]\nseed = 1\nformat = \"u16\"",
