@@ -62,33 +62,29 @@ pub fn generate(spec: &TextureSpec, progress: Progress) -> Texture {
     };
     let data = match &spec.kind {
         Kind::Blue2d {
-            sigma,
-            initial_density,
+            initial_density, ..
         } => {
-            let g = vec![Group {
-                axes: vec![0, 1],
-                sigma: *sigma,
-            }];
-            let cfg = vac_config(dims, &[true, true], g, *initial_density, spec.seed);
+            let cfg = vac_config(
+                dims,
+                &[true, true],
+                spec.kind.groups(),
+                *initial_density,
+                spec.seed,
+            );
             encode_ranks(&vac::rank(&cfg, progress).0, n as u32, scalar)
         }
         Kind::Stbn {
-            sigma_xy,
-            sigma_t,
             initial_density,
             histogram,
+            ..
         } => {
-            let g = vec![
-                Group {
-                    axes: vec![0, 1],
-                    sigma: *sigma_xy,
-                },
-                Group {
-                    axes: vec![2],
-                    sigma: *sigma_t,
-                },
-            ];
-            let cfg = vac_config(dims, &[true; 3], g, *initial_density, spec.seed);
+            let cfg = vac_config(
+                dims,
+                &[true; 3],
+                spec.kind.groups(),
+                *initial_density,
+                spec.seed,
+            );
             ranked(vac::rank(&cfg, progress).0, *histogram)
         }
         Kind::Vac {

@@ -98,6 +98,38 @@ impl Kind {
     }
 }
 
+impl Kind {
+    /// The void-and-cluster axis groups this kind ranks with (STBN App. B): `{x, y}` for the 2D
+    /// kinds (each 2D mask of the baselines), `{x, y} × {t}` for STBN, the spec's groups for `vac`,
+    /// none for white noise. The generator and the spec's work check both read it.
+    pub fn groups(&self) -> Vec<Group> {
+        let xy = |sigma: f64| Group {
+            axes: vec![0, 1],
+            sigma,
+        };
+        match self {
+            Kind::Blue2d { sigma, .. }
+            | Kind::Independent2d { sigma, .. }
+            | Kind::Golden { sigma, .. } => {
+                vec![xy(*sigma)]
+            }
+            Kind::Stbn {
+                sigma_xy, sigma_t, ..
+            } => {
+                vec![
+                    xy(*sigma_xy),
+                    Group {
+                        axes: vec![2],
+                        sigma: *sigma_t,
+                    },
+                ]
+            }
+            Kind::Vac { groups, .. } => groups.clone(),
+            Kind::White => Vec::new(),
+        }
+    }
+}
+
 /// Every kind the `kind` key accepts.
 pub const KINDS: &[&str] = &["blue2d", "stbn", "vac", "white", "independent2d", "golden"];
 /// Kinds the design names that a later release will add.
@@ -640,16 +672,13 @@ fn check_work(spec: &TextureSpec, span: Option<Span>) -> Result<(), SpecError> {
             .map(|&a| (2 * r + 1).min(spec.dims[a] as u64))
             .product()
     };
-    let fp = match &spec.kind {
-        Kind::Blue2d { sigma, .. }
-        | Kind::Independent2d { sigma, .. }
-        | Kind::Golden { sigma, .. } => group_work(&[0, 1], *sigma),
-        Kind::Stbn {
-            sigma_xy, sigma_t, ..
-        } => group_work(&[0, 1], *sigma_xy) + group_work(&[2], *sigma_t),
-        Kind::Vac { groups, .. } => groups.iter().map(|g| group_work(&g.axes, g.sigma)).sum(),
-        Kind::White => 1,
-    };
+    let fp = spec
+        .kind
+        .groups()
+        .iter()
+        .map(|g| group_work(&g.axes, g.sigma))
+        .sum::<u64>()
+        .max(1);
     if n.saturating_mul(fp) > MAX_SPLAT_WORK {
         return Err(SpecError::at(
             "dims",
