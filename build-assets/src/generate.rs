@@ -115,6 +115,10 @@ pub fn generate(spec: &TextureSpec, progress: Progress) -> Texture {
             progress(n as u64, n as u64);
             encode_unit(&baselines::golden(&ranks, dims[2]), scalar)
         }
+        Kind::Fast(params) => {
+            let out = crate::fast::generate(params, dims, spec.seed, progress);
+            crate::fast::encode(params, dims, &out.samples, scalar)
+        }
     };
     Texture {
         name: spec.name.clone(),

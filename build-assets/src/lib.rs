@@ -5,6 +5,7 @@
 //! function of the spec: same spec, same bytes, on any machine and thread count.
 
 pub mod baselines;
+pub mod fast;
 pub mod generate;
 pub mod rng;
 pub mod spec;
@@ -19,5 +20,6 @@ pub mod bake;
 pub mod cache;
 pub mod codegen;
 pub mod export;
+pub mod report;
 
 pub use bake::{Bake, BakeError, bake};

@@ -13,6 +13,8 @@ const SPECS: &[&str] = &[
     "kind = \"independent2d\"\ndims = [16, 16, 4]\nseed = 2",
     "kind = \"golden\"\ndims = [16, 16, 4]\nseed = 2\nformat = \"u16\"",
     "kind = \"white\"\ndims = [16, 16, 4]\nseed = 2",
+    "kind = \"fast\"\ndims = [16, 16, 4]\nseed = 5\nformat = \"u16\"\niterations = 4",
+    "kind = \"fast\"\ndims = [16, 16, 2]\nseed = 5\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 3 }\niterations = 3",
 ];
 
 #[test]
@@ -50,11 +52,13 @@ fn output_matches_the_golden_digests() {
     );
 }
 
-const GOLDEN: [u64; 6] = [
+const GOLDEN: [u64; 8] = [
     0xf72c7f7c23bab7cd,
     0x5005bacaa1866091,
     0x2fe111ec5bd47c1d,
     0xc7873e02a791b413,
     0xee9707c42f41c431,
     0x678bc41f284dccd3,
+    0xc5699679ae0bc5dd,
+    0xc53b9ffb8035d1a7,
 ];

@@ -97,8 +97,8 @@ fn unknown_kinds_keys_and_formats() {
         &["unknown kind `stbm`", "did you mean `stbn`"],
     );
     has(
-        &error("kind = \"fast\"\ndims = [8, 8, 4]"),
-        &["kind `fast` is not available"],
+        &error("kind = \"bayer\"\ndims = [8, 8, 4]"),
+        &["kind `bayer` is not available"],
     );
     has(
         &error("kind = \"stbn\"\ndims = [8, 8, 4]\nsigma_xyz = 2"),

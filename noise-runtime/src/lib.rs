@@ -20,6 +20,7 @@ pub mod ldg;
 pub mod mask;
 pub mod math;
 pub mod sequence;
+pub mod stochastic;
 pub mod texel;
 pub mod warp;
 

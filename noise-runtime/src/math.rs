@@ -79,3 +79,114 @@ pub fn fract_f64(v: f64) -> f64 {
     let f = if f < 0.0 { f + 1.0 } else { f };
     if f >= 1.0 { 0.0 } else { f }
 }
+
+/// Splits `x` into its lattice cell and the offset in it: `(⌊x⌋, x − ⌊x⌋)` with the offset in
+/// `[0, 1)`. Total: beyond `±2^31` the cell saturates, and a NaN or infinite input gives
+/// `(cell, 0)`, so noise built on it never sees a NaN.
+#[inline(always)]
+pub fn split(x: f32) -> (i32, f32) {
+    let t = x as i32; // saturating, NaN → 0
+    let ft = t as f32;
+    let (cell, fl) = if ft > x {
+        (t.saturating_sub(1), ft - 1.0)
+    } else {
+        (t, ft)
+    };
+    let f = x - fl;
+    if (0.0..1.0).contains(&f) {
+        (cell, f)
+    } else {
+        (cell, 0.0)
+    }
+}
+
+/// `e^x` for `x ≤ 0` in f32 (relative error below 2e-7); `x > 0` is clamped to 0 (gives 1),
+/// very negative or NaN `x` gives 0.
+#[inline(always)]
+pub fn exp_neg(x: f32) -> f32 {
+    if x.is_nan() || x <= -87.0 {
+        return 0.0;
+    }
+    let x = if x > 0.0 { 0.0 } else { x };
+    // e^x = 2^(x·log2 e) = 2^k · 2^r, r ∈ [-½, ½]; 2^r by its Taylor series in r·ln 2.
+    let y = x * core::f32::consts::LOG2_E;
+    let k = y.round_ties_even_noneg();
+    let r = (y - k) * core::f32::consts::LN_2;
+    let p = 1.0
+        + r * (1.0
+            + r * (0.5
+                + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (1.0 / 720.0))))));
+    let bits = ((k as i32 + 127) as u32) << 23;
+    p * f32::from_bits(bits)
+}
+
+/// Rounding used by [`exp_neg`] without `std` (`y ≤ 0`, |y| < 2^22).
+trait RoundNoStd {
+    fn round_ties_even_noneg(self) -> f32;
+}
+
+impl RoundNoStd for f32 {
+    #[inline(always)]
+    fn round_ties_even_noneg(self) -> f32 {
+        // Adding and subtracting 1.5·2^23 rounds to an integer in the current mode (nearest).
+        const MAGIC: f32 = 12_582_912.0;
+        (self + MAGIC) - MAGIC
+    }
+}
+
+/// `ln x` for `x > 0` in f32 (absolute error below 1e-6); `x ≤ 0` or NaN gives `-87.0`
+/// (≈ ln of the smallest normal), infinity gives `88.7`.
+#[inline(always)]
+pub fn ln(x: f32) -> f32 {
+    if x.is_nan() || x < f32::MIN_POSITIVE {
+        return -87.0;
+    }
+    if x == f32::INFINITY {
+        return 88.7;
+    }
+    let bits = x.to_bits();
+    let mut e = ((bits >> 23) & 0xff) as i32 - 127;
+    let mut m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000); // [1, 2)
+    if m > core::f32::consts::SQRT_2 {
+        m *= 0.5;
+        e += 1;
+    }
+    // ln m = 2 atanh(s), s = (m − 1)/(m + 1) ∈ [−0.172, 0.172].
+    let s = (m - 1.0) / (m + 1.0);
+    let s2 = s * s;
+    let a = 2.0 * s * (1.0 + s2 * (1.0 / 3.0 + s2 * (1.0 / 5.0 + s2 * (1.0 / 7.0 + s2 / 9.0))));
+    a + e as f32 * core::f32::consts::LN_2
+}
+
+/// `cos 2πu` for an angle in turns, f32, any finite `u` (error below 1e-6).
+#[inline(always)]
+pub fn cos_turns(u: f32) -> f32 {
+    let (_, f) = split(u + 0.5);
+    // f − ½ ∈ [−½, ½) turns; fold to [0, ¼] with sign.
+    let r = (f - 0.5).abs();
+    let (r, sign) = if r > 0.25 { (0.5 - r, -1.0) } else { (r, 1.0) };
+    let x = r * core::f32::consts::TAU;
+    let x2 = x * x;
+    let c = 1.0
+        + x2 * (-0.5
+            + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0 + x2 * (1.0 / 40_320.0 - x2 / 3_628_800.0))));
+    sign * c
+}
+
+/// `√x` in f32 for the hot paths (Worley distances, kernels): the classic bit-level first guess
+/// of `1/√x` refined by three Newton steps, relative error below 3e-7. `x ≤ 0` or NaN gives 0.
+#[inline(always)]
+pub fn sqrt_fast(x: f32) -> f32 {
+    if x.is_nan() || x <= 0.0 {
+        return 0.0;
+    }
+    if x == f32::INFINITY {
+        return x;
+    }
+    let mut y = f32::from_bits(0x5f37_5a86u32.wrapping_sub(x.to_bits() >> 1));
+    let h = 0.5 * x;
+    y *= 1.5 - h * y * y;
+    y *= 1.5 - h * y * y;
+    y *= 1.5 - h * y * y;
+    x * y
+}

@@ -15,5 +15,11 @@ pub fn use_everything(x: i32, y: i32, frame: u32) -> f32 {
     let frac = |v: f32| noisebake::math::fract_f64(v as f64) as f32;
     let d = noisebake::warp::cosine_hemisphere(frac(m), frac(g));
     let s = noisebake::sequence::to_unit(noisebake::sequence::golden(frame));
-    m + g + d[2] + s + noisebake::math::sqrt(2.0)
+    let st = noisebake::stochastic::fbm3_stochastic(
+        [g, m, s],
+        noisebake::stochastic::Fractal::default(),
+        1,
+        frac(m),
+    ) + noisebake::stochastic::smooth_voronoi3([g, m, s], 2);
+    m + g + d[2] + s + st + noisebake::math::sqrt(2.0)
 }

@@ -9,6 +9,7 @@
 //!   averaging of the first k frames (Monte Carlo) and by an exponential moving average.
 
 pub mod dft;
+pub mod filtered;
 
 use crate::texture::Texture;
 use serde::Serialize;

@@ -55,6 +55,22 @@ enum Command {
         #[arg(long)]
         channels_last: bool,
     },
+    /// The speed-against-error report: `fast` (FAST optimiser), `stochastic` (noise functions),
+    /// or `all` (the default).
+    Report {
+        /// Which section.
+        #[arg(default_value = "all")]
+        section: String,
+        /// Also write the rows as JSON.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Directory for plots.
+        #[arg(long, default_value = "target/noisebake-report")]
+        out: PathBuf,
+        /// Include the slow full-size cases (FAST 128×128×32 cosine hemisphere).
+        #[arg(long)]
+        full: bool,
+    },
 }
 
 fn main() -> ExitCode {
@@ -66,6 +82,12 @@ fn main() -> ExitCode {
             file,
             channels_last,
         } => analyze(&file, channels_last),
+        Command::Report {
+            section,
+            json,
+            out,
+            full,
+        } => report(&section, json.as_deref(), &out, full),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -233,5 +255,40 @@ fn analyze(file: &Path, channels_last: bool) -> Result<(), String> {
         "{}",
         serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
     );
+    Ok(())
+}
+
+fn report(section: &str, json: Option<&Path>, out: &Path, full: bool) -> Result<(), String> {
+    let mut log = |s: &str| println!("{s}");
+    let mut doc = serde_json::Map::new();
+    if !matches!(section, "all" | "fast" | "stochastic") {
+        return Err(format!(
+            "unknown report section `{section}`: use fast, stochastic or all"
+        ));
+    }
+    if matches!(section, "all" | "fast") {
+        println!("FAST (filter-adapted masks):");
+        let r = build_assets::report::fast::run(out, full, &mut log)?;
+        println!("  error after filtering, 64x64x16 scalar (steps, Gaussian σ 1.3435, EMA α 0.1):");
+        println!(
+            "  {:<24} {:>14} {:>10} {:>14}",
+            "mask", "spatial+EMA", "EMA only", "spatial only"
+        );
+        for e in &r.errors {
+            println!(
+                "  {:<24} {:>14.5} {:>10.5} {:>14.5}",
+                e.mask, e.spatial_and_ema, e.ema_only, e.spatial_only
+            );
+        }
+        doc.insert(
+            "fast".into(),
+            serde_json::to_value(&r).map_err(|e| e.to_string())?,
+        );
+    }
+    if let Some(path) = json {
+        let text = serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?;
+        write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
     Ok(())
 }

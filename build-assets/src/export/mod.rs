@@ -3,6 +3,7 @@
 //! never leaves a half-written file under the final name.
 
 pub mod npy;
+pub mod plot;
 pub mod png;
 
 use std::io;

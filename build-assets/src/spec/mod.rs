@@ -5,15 +5,18 @@
 //! same thing everywhere and every error names the key (and points at it when a span is known).
 
 mod error;
+mod fast;
 mod format;
 mod toml_file;
 mod value;
 
 pub use error::{SpecError, closest};
+pub use fast::MAX_FAST_WORK;
 pub use format::{Format, Scalar, decode_unit, encode_ranks, encode_unit};
 pub use toml_file::{SpecFile, parse_toml};
 pub use value::{Span, Spanned, Table, Value};
 
+use crate::fast::FastParams;
 use crate::vac::Group;
 
 /// Most texels a texture may have (64 Mi): void and cluster needs about
@@ -82,6 +85,8 @@ pub enum Kind {
         /// Initial pattern density.
         initial_density: f64,
     },
+    /// A filter-adapted mask (FAST, Donnelly et al. 2024).
+    Fast(FastParams),
 }
 
 impl Kind {
@@ -94,6 +99,7 @@ impl Kind {
             Kind::White => "white",
             Kind::Independent2d { .. } => "independent2d",
             Kind::Golden { .. } => "golden",
+            Kind::Fast(_) => "fast",
         }
     }
 }
@@ -125,15 +131,23 @@ impl Kind {
                 ]
             }
             Kind::Vac { groups, .. } => groups.clone(),
-            Kind::White => Vec::new(),
+            Kind::White | Kind::Fast(_) => Vec::new(),
         }
     }
 }
 
 /// Every kind the `kind` key accepts.
-pub const KINDS: &[&str] = &["blue2d", "stbn", "vac", "white", "independent2d", "golden"];
+pub const KINDS: &[&str] = &[
+    "blue2d",
+    "stbn",
+    "vac",
+    "fast",
+    "white",
+    "independent2d",
+    "golden",
+];
 /// Kinds the design names that a later release will add.
-pub const PLANNED_KINDS: &[&str] = &["fast", "ign", "r2", "plus", "bayer"];
+pub const PLANNED_KINDS: &[&str] = &["ign", "r2", "plus", "bayer"];
 
 /// One texture: a name, a kind with its parameters, dims, seed and storage format.
 #[derive(Clone, Debug, PartialEq)]
@@ -222,6 +236,10 @@ impl TextureSpec {
                 );
             }
             Kind::White => {}
+            Kind::Fast(p) => {
+                s += ";";
+                s += &p.canonical();
+            }
         }
         s
     }
@@ -401,6 +419,7 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         Some(v) => u64::try_from(integer("seed", v)?)
             .map_err(|_| SpecError::at("seed", v.span, "`seed` must be a non-negative integer"))?,
     };
+    let format_span = f.get("format").and_then(|v| v.span);
     let format = match f.string("format")? {
         None => Format::U8,
         Some((s, span)) => Format::parse(s).ok_or_else(|| {
@@ -517,6 +536,10 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
                 initial_density: f.density()?,
             }
         }
+        "fast" => {
+            want_dims(2, 3)?;
+            Kind::Fast(fast::parse(&mut f, &dims, format, format_span)?)
+        }
         other => {
             let msg = if PLANNED_KINDS.contains(&other) {
                 format!("kind `{other}` is not available in this version of noisebake yet")
@@ -532,7 +555,7 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
             return Err(SpecError::at("kind", kind_span, msg));
         }
     };
-    if format.channels != 1 {
+    if format.channels != 1 && !matches!(kind, Kind::Fast(_)) {
         return Err(SpecError::at(
             "format",
             f.get("format").and_then(|v| v.span),

@@ -1,0 +1,95 @@
+//! Error after filtering (FAST §6, Fig. 8): integrate step functions with one sample per pixel
+//! and frame, denoise with a spatial filter per frame and an EMA over frames, and measure the
+//! RMSE against the true integral. This is what a FAST mask is optimised for, so it is the
+//! honest comparison between masks.
+
+/// A denoiser: separable spatial taps per frame, then an optional EMA over frames.
+#[derive(Clone, Debug)]
+pub struct Denoiser {
+    /// Normalised 1D taps applied in x and y, wrapping (`[1.0]` for none).
+    pub spatial: Vec<f64>,
+    /// EMA blend weight of the new frame; `None` measures each frame on its own.
+    pub ema_alpha: Option<f64>,
+}
+
+/// Thresholds of the step integrands `φ_c(s) = [s < c]` (true integral `c`).
+pub const STEPS: [f64; 7] = [0.1, 0.25, 0.4, 0.5, 0.6, 0.75, 0.9];
+
+/// Separable wrapped convolution of one `w × h` frame.
+fn blur(img: &[f64], w: usize, h: usize, taps: &[f64]) -> Vec<f64> {
+    if taps.len() == 1 {
+        return img.to_vec();
+    }
+    let r = (taps.len() / 2) as isize;
+    let mut tmp = vec![0.0; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let mut s = 0.0;
+            for (k, &f) in taps.iter().enumerate() {
+                let xx = (x as isize + k as isize - r).rem_euclid(w as isize) as usize;
+                s += f * img[y * w + xx];
+            }
+            tmp[y * w + x] = s;
+        }
+    }
+    let mut out = vec![0.0; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let mut s = 0.0;
+            for (k, &f) in taps.iter().enumerate() {
+                let yy = (y as isize + k as isize - r).rem_euclid(h as isize) as usize;
+                s += f * tmp[yy * w + x];
+            }
+            out[y * w + x] = s;
+        }
+    }
+    out
+}
+
+/// RMSE after denoising, over [`STEPS`], pixels and measured frames. `values` are scalar
+/// samples in `[0, 1)`, x fastest, `w × h × t`. With an EMA the mask loops for `4t` frames
+/// (at least 64) and the last `t` frames are measured (the converged filter); without, every
+/// frame is measured.
+pub fn filtered_rmse(values: &[f64], dims: [usize; 3], d: &Denoiser) -> f64 {
+    let [w, h, t] = dims;
+    let n = w * h;
+    let (mut sum, mut count) = (0.0, 0usize);
+    for &c in &STEPS {
+        let frames: Vec<Vec<f64>> = (0..t)
+            .map(|f| {
+                let img: Vec<f64> = values[f * n..(f + 1) * n]
+                    .iter()
+                    .map(|&s| if s < c { 1.0 } else { 0.0 })
+                    .collect();
+                blur(&img, w, h, &d.spatial)
+            })
+            .collect();
+        match d.ema_alpha {
+            None => {
+                for fr in &frames {
+                    for &v in fr {
+                        sum += (v - c) * (v - c);
+                        count += 1;
+                    }
+                }
+            }
+            Some(alpha) => {
+                let total = (4 * t).max(64).div_ceil(t) * t;
+                let mut hist = frames[0].clone();
+                for f in 1..total {
+                    let cur = &frames[f % t];
+                    for (hv, &v) in hist.iter_mut().zip(cur) {
+                        *hv = alpha * v + (1.0 - alpha) * *hv;
+                    }
+                    if f >= total - t {
+                        for &v in &hist {
+                            sum += (v - c) * (v - c);
+                            count += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    (sum / count as f64).sqrt()
+}

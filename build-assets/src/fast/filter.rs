@@ -1,0 +1,343 @@
+//! The filters FAST optimises for and the overlap `F = f ⋆ f` its loss weighs pairs with
+//! (FAST eq. 4: `F_jk = Σ_i f_ij f_ik`).
+//!
+//! Every filter is applied separably per axis and wraps on the texture's torus, so its overlap is
+//! the circular autocorrelation of the taps laid onto a ring of the axis size.
+
+/// A 1D filter along a spatial axis (applied separably in x and y).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Filter {
+    /// No filtering along the axis (a single unit tap).
+    None,
+    /// An `n`-tap box.
+    Box {
+        /// Tap count.
+        size: usize,
+    },
+    /// A Gaussian of standard deviation σ, truncated at `ceil(3σ)`.
+    Gauss {
+        /// Standard deviation in texels.
+        sigma: f64,
+    },
+    /// The binomial filter of order N (`C(N, k) / 2^N`, N + 1 taps).
+    Binomial {
+        /// Order.
+        order: usize,
+    },
+}
+
+impl Filter {
+    /// The normalised taps (they sum to 1), centred.
+    pub fn taps(self) -> Vec<f64> {
+        let t: Vec<f64> = match self {
+            Filter::None => vec![1.0],
+            Filter::Box { size } => vec![1.0; size.max(1)],
+            Filter::Gauss { sigma } => {
+                let r = (3.0 * sigma).ceil() as i64;
+                (-r..=r)
+                    .map(|x| crate::fast::space::exp(-((x * x) as f64) / (2.0 * sigma * sigma)))
+                    .collect()
+            }
+            Filter::Binomial { order } => {
+                let mut row = vec![1.0f64];
+                for _ in 0..order {
+                    let mut next = vec![1.0; row.len() + 1];
+                    for k in 1..row.len() {
+                        next[k] = row[k - 1] + row[k];
+                    }
+                    row = next;
+                }
+                row
+            }
+        };
+        let sum: f64 = t.iter().sum();
+        t.into_iter().map(|x| x / sum).collect()
+    }
+}
+
+/// A filter along time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TemporalFilter {
+    /// No temporal filtering.
+    None,
+    /// An `n`-frame box.
+    Box {
+        /// Frame count.
+        size: usize,
+    },
+    /// A Gaussian over frames.
+    Gauss {
+        /// Standard deviation in frames.
+        sigma: f64,
+    },
+    /// Exponential moving average with history rejection (FAST eq. 14–17): each frame blends
+    /// `α` of the new sample into the history; with probability `β` per frame the history is
+    /// rejected.
+    Ema {
+        /// Blend weight of the new frame, in (0, 1].
+        alpha: f64,
+        /// History-rejection probability, in (0, 1].
+        beta: f64,
+    },
+}
+
+/// The circular autocorrelation `F[d] = Σ_x f[x] f[x + d]` of `taps` wrapped onto a ring of `n`.
+pub fn ring_autocorrelation(taps: &[f64], n: usize) -> Vec<f64> {
+    let mut ring = vec![0.0; n];
+    for (i, &t) in taps.iter().enumerate() {
+        ring[i % n] += t;
+    }
+    (0..n)
+        .map(|d| (0..n).map(|x| ring[x] * ring[(x + d) % n]).sum())
+        .collect()
+}
+
+impl TemporalFilter {
+    /// The temporal overlap `F_t[d]` on a ring of `n` frames.
+    ///
+    /// For the EMA this is eq. (17) truncated to the stored frames: a weighted average, over the
+    /// history length `m = 1..=n` with weight `β (1 − β)^(m−1)`, of the autocorrelation of the
+    /// truncated filter `f^(m)` of eq. (16) (taps `α (1 − α)^l` for `l < m − 1`, and the remaining
+    /// `(1 − α)^(m−1)` on the oldest frame). The overall scale does not change the optimum.
+    pub fn overlap(self, n: usize) -> Vec<f64> {
+        match self {
+            TemporalFilter::None => ring_autocorrelation(&[1.0], n),
+            TemporalFilter::Box { size } => ring_autocorrelation(&Filter::Box { size }.taps(), n),
+            TemporalFilter::Gauss { sigma } => {
+                ring_autocorrelation(&Filter::Gauss { sigma }.taps(), n)
+            }
+            TemporalFilter::Ema { alpha, beta } => {
+                let mut total = vec![0.0; n];
+                let mut weight = beta;
+                for m in 1..=n {
+                    let taps: Vec<f64> = (0..m)
+                        .map(|l| {
+                            if l + 1 < m {
+                                alpha * (1.0 - alpha).powi(l as i32)
+                            } else {
+                                (1.0 - alpha).powi(l as i32)
+                            }
+                        })
+                        .collect();
+                    for (t, a) in total.iter_mut().zip(ring_autocorrelation(&taps, n)) {
+                        *t += weight * a;
+                    }
+                    weight *= 1.0 - beta;
+                }
+                total
+            }
+        }
+    }
+
+    /// Frames the filter spans (1 for none).
+    pub fn width(self) -> usize {
+        match self {
+            TemporalFilter::None | TemporalFilter::Ema { .. } => 1,
+            TemporalFilter::Box { size } => size,
+            TemporalFilter::Gauss { sigma } => Filter::Gauss { sigma }.taps().len(),
+        }
+    }
+}
+
+/// How the spatial and temporal overlaps combine (FAST §5.2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Combine {
+    /// `F = F_xy · F_t`: the result is filtered in space and time.
+    Product,
+    /// `F = w · F_xy` within a frame `+ (1 − w) · F_t` at the same pixel (Wolfe et al. 2022's
+    /// separate spatial and temporal objectives).
+    Separate(f64),
+}
+
+/// Pair weights below this fraction of the largest are dropped from the footprint.
+pub const FOOTPRINT_CUTOFF: f64 = 1e-4;
+
+/// One row of the footprint: fixed `(dy, dt)`, consecutive `dx` with their weights.
+#[derive(Clone, Debug)]
+pub struct Row {
+    /// Offset along y.
+    pub dy: i32,
+    /// Offset along t.
+    pub dt: i32,
+    /// `(dx, weight)` pairs.
+    pub entries: Vec<(i32, f64)>,
+}
+
+/// The non-zero pair weights `F(dx, dy, dt)` around a texel, `(0, 0, 0)` excluded.
+#[derive(Clone, Debug)]
+pub struct Footprint {
+    /// Rows of offsets and weights.
+    pub rows: Vec<Row>,
+    /// Weight of same-slice offsets, `F(dx, dy, 0)`, indexed `[dy mod h][dx mod w]` (dense).
+    pub same_slice: Vec<f64>,
+    /// Largest |dx| and |dy| with a weight (the tile halo).
+    pub radius: [usize; 2],
+    /// Weight dropped by the cutoff, relative to the kept total.
+    pub dropped: f64,
+}
+
+/// Distinct offsets on a ring of `n`: `-(n-1)/2 ..= n/2`.
+fn ring_offsets(n: usize) -> std::ops::RangeInclusive<i32> {
+    -(((n - 1) / 2) as i32)..=(n / 2) as i32
+}
+
+impl Footprint {
+    /// Builds the footprint of `F` for a `w × h × t` texture.
+    pub fn new(
+        dims: [usize; 3],
+        spatial: Filter,
+        temporal: TemporalFilter,
+        combine: Combine,
+    ) -> Footprint {
+        let [w, h, t] = dims;
+        let taps = spatial.taps();
+        let fx = ring_autocorrelation(&taps, w);
+        let fy = ring_autocorrelation(&taps, h);
+        let ft = temporal.overlap(t);
+        let at = |f: &[f64], d: i32| f[d.rem_euclid(f.len() as i32) as usize];
+        let weight = |dx: i32, dy: i32, dt: i32| -> f64 {
+            let sxy = at(&fx, dx) * at(&fy, dy);
+            match combine {
+                Combine::Product => sxy * at(&ft, dt),
+                Combine::Separate(wt) => {
+                    let mut f = 0.0;
+                    if dt == 0 {
+                        f += wt * sxy;
+                    }
+                    if dx == 0 && dy == 0 {
+                        f += (1.0 - wt) * at(&ft, dt);
+                    }
+                    f
+                }
+            }
+        };
+        let mut max: f64 = 0.0;
+        for dt in ring_offsets(t) {
+            for dy in ring_offsets(h) {
+                for dx in ring_offsets(w) {
+                    max = max.max(weight(dx, dy, dt));
+                }
+            }
+        }
+        let cut = FOOTPRINT_CUTOFF * max;
+        let mut rows = Vec::new();
+        let mut same_slice = vec![0.0; w * h];
+        let mut radius = [0usize; 2];
+        let (mut kept, mut dropped) = (0.0, 0.0);
+        for dt in ring_offsets(t) {
+            for dy in ring_offsets(h) {
+                let mut entries = Vec::new();
+                for dx in ring_offsets(w) {
+                    let f = weight(dx, dy, dt);
+                    if (dx, dy, dt) == (0, 0, 0) || f <= 0.0 {
+                        continue;
+                    }
+                    if f < cut {
+                        dropped += f;
+                        continue;
+                    }
+                    kept += f;
+                    entries.push((dx, f));
+                    radius[0] = radius[0].max(dx.unsigned_abs() as usize);
+                    radius[1] = radius[1].max(dy.unsigned_abs() as usize);
+                    if dt == 0 {
+                        same_slice[dy.rem_euclid(h as i32) as usize * w
+                            + dx.rem_euclid(w as i32) as usize] = f;
+                    }
+                }
+                if !entries.is_empty() {
+                    rows.push(Row { dy, dt, entries });
+                }
+            }
+        }
+        Footprint {
+            rows,
+            same_slice,
+            radius,
+            dropped: if kept > 0.0 { dropped / kept } else { 0.0 },
+        }
+    }
+
+    /// Number of offsets.
+    pub fn len(&self) -> usize {
+        self.rows.iter().map(|r| r.entries.len()).sum()
+    }
+
+    /// Whether no pair interacts (no filter at all).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn taps_are_normalised_and_binomial_is_pascal() {
+        for f in [
+            Filter::Box { size: 5 },
+            Filter::Gauss { sigma: 1.3435 },
+            Filter::Binomial { order: 4 },
+        ] {
+            let s: f64 = f.taps().iter().sum();
+            assert!((s - 1.0).abs() < 1e-12, "{f:?}");
+        }
+        let b = Filter::Binomial { order: 4 }.taps();
+        let want = [1.0, 4.0, 6.0, 4.0, 1.0].map(|x| x / 16.0);
+        assert_eq!(b, want);
+    }
+
+    #[test]
+    fn box_overlap_is_a_triangle() {
+        let f = ring_autocorrelation(&Filter::Box { size: 5 }.taps(), 32);
+        for d in 0..5 {
+            assert!((f[d] - (5 - d) as f64 / 25.0).abs() < 1e-12);
+            assert!((f[32 - d.max(1)] - f[d.max(1)]).abs() < 1e-15);
+        }
+        assert_eq!(f[5], 0.0);
+    }
+
+    #[test]
+    fn ema_overlap_is_eq17_wrapped() {
+        // Brute force: lag pairs of each truncated filter f^(m) (eq. 16) on the infinite line,
+        // weighted by β(1 − β)^(m − 1) (eq. 17) and folded onto the ring of n frames.
+        let (alpha, beta, n) = (0.3, 0.2, 8usize);
+        let f = TemporalFilter::Ema { alpha, beta }.overlap(n);
+        for d in 0..n {
+            let mut want = 0.0;
+            for m in 1..=n {
+                let tap = |l: usize| {
+                    if l + 1 < m {
+                        alpha * (1.0f64 - alpha).powi(l as i32)
+                    } else if l + 1 == m {
+                        (1.0f64 - alpha).powi(l as i32)
+                    } else {
+                        0.0
+                    }
+                };
+                let w = beta * (1.0f64 - beta).powi(m as i32 - 1);
+                for l in 0..m {
+                    for l2 in 0..m {
+                        if (l2 + n - l) % n == d {
+                            want += w * tap(l) * tap(l2);
+                        }
+                    }
+                }
+            }
+            assert!((f[d] - want).abs() < 1e-12, "d {d}: {} vs {want}", f[d]);
+        }
+        // Symmetric and, without rejection, the eq. (15) decay (1 − α)^|d| near d = 0.
+        assert!((f[1] - f[n - 1]).abs() < 1e-15);
+        let g = TemporalFilter::Ema {
+            alpha: 0.5,
+            beta: 1e-3,
+        }
+        .overlap(64);
+        assert!((g[2] / g[1] - 0.5).abs() < 0.03, "{}", g[2] / g[1]);
+        // β = 1 rejects history every frame: no temporal coupling.
+        let f = TemporalFilter::Ema { alpha, beta: 1.0 }.overlap(16);
+        assert_eq!(f[0], 1.0);
+        assert!(f[1..].iter().all(|&x| x == 0.0));
+    }
+}

@@ -1,0 +1,266 @@
+//! FAST: filter-adapted spatiotemporal sampling masks (Donnelly, Wolfe, Bütepage, Valdés 2024).
+//!
+//! A FAST mask holds one sample per texel — a scalar, an angle, a vector or a unit direction —
+//! arranged so that the error left after the game's own denoising filter is as small as possible.
+//! The loss (eq. 7) is `L = −Σ_jk F_jk d(s_j, s_k)`, where `F = f ⋆ f` is the overlap of the
+//! filter (eq. 4) and `d` the distance of the sample space (eq. 6): minimising it pushes samples
+//! that the filter averages together apart in sample space.
+//!
+//! - [`space`]: sample spaces, their stratified initialisation and distances;
+//! - [`filter`]: spatial and temporal filters (box, Gaussian, binomial, EMA with history
+//!   rejection, eq. 14–17) and the footprint of `F`;
+//! - [`optimize`]: exact sequential swaps on conflict-free tiles (eq. 8).
+
+pub mod filter;
+pub mod optimize;
+pub mod space;
+
+pub use filter::{Combine, Filter, Footprint, TemporalFilter};
+pub use optimize::{CurvePoint, Outcome};
+pub use space::{Distribution, SampleSpace};
+
+use crate::rng::{SplitMix64, derive_seed};
+use crate::spec::{Scalar, encode_ranks, encode_unit};
+
+/// Every parameter of a FAST mask (the `fast` spec kind).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FastParams {
+    /// Where samples live.
+    pub sample_space: SampleSpace,
+    /// Distribution of scalar samples.
+    pub distribution: Distribution,
+    /// Spatial filter (separable in x and y).
+    pub spatial: Filter,
+    /// Temporal filter.
+    pub temporal: TemporalFilter,
+    /// How spatial and temporal overlaps combine.
+    pub combine: Combine,
+    /// Optional cap on optimisation rounds (by default it runs until converged).
+    pub iterations: Option<u32>,
+}
+
+/// Rounds run when no `iterations` cap is given and convergence is not reached earlier.
+pub const MAX_ROUNDS: u32 = 1000;
+
+impl FastParams {
+    /// The canonical form of the parameters (part of the cache key).
+    pub fn canonical(&self) -> String {
+        format!(
+            "sample_space={};distribution={:?};spatial={:?};temporal={:?};combine={:?};iterations={:?}",
+            self.sample_space.name(),
+            self.distribution,
+            self.spatial,
+            self.temporal,
+            self.combine,
+            self.iterations
+        )
+    }
+
+    /// The footprint of `F` on a texture of `dims` (x, y[, t]).
+    pub fn footprint(&self, dims: &[usize]) -> Footprint {
+        Footprint::new(dims3(dims), self.spatial, self.temporal, self.combine)
+    }
+}
+
+fn dims3(dims: &[usize]) -> [usize; 3] {
+    [dims[0], dims[1], dims.get(2).copied().unwrap_or(1)]
+}
+
+/// Distance of the loss for each sample space, monomorphised per channel count.
+macro_rules! with_metric {
+    ($space:expr, $f:ident ( $($arg:expr),* )) => {
+        match $space {
+            SampleSpace::Scalar => $f::<1, _>($($arg,)* |a: &[f64; 1], b: &[f64; 1]| (a[0] - b[0]).abs()),
+            SampleSpace::Circle => $f::<1, _>($($arg,)* |a: &[f64; 1], b: &[f64; 1]| {
+                let d = (a[0] - b[0]).abs();
+                d.min(1.0 - d)
+            }),
+            SampleSpace::Vec2 => $f::<2, _>($($arg,)* euclid::<2>),
+            SampleSpace::Vec3 => $f::<3, _>($($arg,)* euclid::<3>),
+            SampleSpace::Vec4 => $f::<4, _>($($arg,)* euclid::<4>),
+            SampleSpace::Sphere | SampleSpace::Hemisphere | SampleSpace::CosineHemisphere => {
+                $f::<3, _>($($arg,)* |a: &[f64; 3], b: &[f64; 3]| {
+                    space::acos_fast(a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
+                })
+            }
+        }
+    };
+}
+
+#[inline(always)]
+fn euclid<const C: usize>(a: &[f64; C], b: &[f64; C]) -> f64 {
+    let mut s = 0.0;
+    for k in 0..C {
+        let d = a[k] - b[k];
+        s += d * d;
+    }
+    s.sqrt()
+}
+
+/// The stratified initialisation: every (x, y) slice holds its own stratified set in a random
+/// order (FAST §4), `channels` values per texel.
+pub fn initial_samples(params: &FastParams, dims: &[usize], seed: u64) -> Vec<f64> {
+    let [w, h, t] = dims3(dims);
+    let mut out = Vec::with_capacity(w * h * t * params.sample_space.channels());
+    for slice in 0..t {
+        let mut rng = SplitMix64::new(derive_seed(seed, slice as u64));
+        out.extend(space::stratified_slice(
+            params.sample_space,
+            params.distribution,
+            w * h,
+            &mut rng,
+        ));
+    }
+    out
+}
+
+/// The loss of eq. (7) of `samples` for `params` on `dims`.
+pub fn loss(params: &FastParams, dims: &[usize], samples: &[f64]) -> f64 {
+    let fp = params.footprint(dims);
+    let d = dims3(dims);
+    with_metric!(params.sample_space, run_loss(d, &fp, samples))
+}
+
+fn run_loss<const C: usize, D>(d: [usize; 3], fp: &Footprint, s: &[f64], dist: D) -> f64
+where
+    D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
+{
+    optimize::loss::<C, D>(d, fp, s, dist)
+}
+
+/// Generates the optimised samples (`channels` per texel) and the loss curve.
+pub fn generate(
+    params: &FastParams,
+    dims: &[usize],
+    seed: u64,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Outcome {
+    let samples = initial_samples(params, dims, seed);
+    let fp = params.footprint(dims);
+    let d = dims3(dims);
+    let rounds = params.iterations.unwrap_or(MAX_ROUNDS);
+    with_metric!(
+        params.sample_space,
+        run_optimize(d, &fp, samples, seed, rounds, progress)
+    )
+}
+
+fn run_optimize<const C: usize, D>(
+    d: [usize; 3],
+    fp: &Footprint,
+    samples: Vec<f64>,
+    seed: u64,
+    rounds: u32,
+    progress: &mut dyn FnMut(u64, u64),
+    dist: D,
+) -> Outcome
+where
+    D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
+{
+    optimize::optimize::<C, D>(d, fp, samples, dist, seed, rounds, progress)
+}
+
+/// Encodes samples for storage. Uniform scalars are the ranks of their slice (so unorm formats
+/// are exactly flat, DESIGN.md's rank encoding); other scalars and `[0, 1)` vectors are stored as
+/// values; unit vectors as `0.5 + 0.5·v` (like the public STBN/FAST textures: unorm values
+/// `round(·(2^bits − 1))`), Gaussian scalars raw (f32 only).
+pub fn encode(params: &FastParams, dims: &[usize], samples: &[f64], scalar: Scalar) -> Vec<u8> {
+    let [w, h, _] = dims3(dims);
+    let slice = w * h;
+    match (params.sample_space, params.distribution) {
+        (SampleSpace::Scalar, Distribution::Uniform) => {
+            let ranks: Vec<u32> = samples
+                .iter()
+                .map(|&v| (v * slice as f64 - 0.5).round() as u32)
+                .collect();
+            encode_ranks(&ranks, slice as u32, scalar)
+        }
+        (SampleSpace::Scalar, Distribution::Gauss) => samples
+            .iter()
+            .flat_map(|&v| (v as f32).to_le_bytes())
+            .collect(),
+        (s, _) if s.is_unit_vector() => {
+            let half: Vec<f64> = samples.iter().map(|&v| 0.5 + 0.5 * v).collect();
+            match scalar {
+                Scalar::U8 => half.iter().map(|&v| (v * 255.0).round() as u8).collect(),
+                Scalar::U16 => half
+                    .iter()
+                    .flat_map(|&v| ((v * 65535.0).round() as u16).to_le_bytes())
+                    .collect(),
+                Scalar::F32 => half
+                    .iter()
+                    .flat_map(|&v| (v as f32).to_le_bytes())
+                    .collect(),
+            }
+        }
+        _ => encode_unit(samples, scalar),
+    }
+}
+
+/// Decodes stored bytes back to samples (inverse of [`encode`] up to quantisation).
+pub fn decode(params: &FastParams, bytes: &[u8], scalar: Scalar) -> Vec<f64> {
+    let unit = crate::spec::decode_unit(bytes, scalar);
+    if params.sample_space.is_unit_vector() {
+        let top = match scalar {
+            Scalar::U8 => Some(255.0),
+            Scalar::U16 => Some(65535.0),
+            Scalar::F32 => None,
+        };
+        let raw: Vec<f64> = match (scalar, top) {
+            (Scalar::U8, Some(t)) => bytes.iter().map(|&b| b as f64 / t).collect(),
+            (Scalar::U16, Some(t)) => bytes
+                .chunks_exact(2)
+                .map(|c| u16::from_le_bytes([c[0], c[1]]) as f64 / t)
+                .collect(),
+            _ => unit,
+        };
+        raw.iter().map(|&v| 2.0 * v - 1.0).collect()
+    } else {
+        unit
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn params(space: SampleSpace, combine: Combine) -> FastParams {
+        FastParams {
+            sample_space: space,
+            distribution: Distribution::Uniform,
+            spatial: Filter::Gauss { sigma: 1.0 },
+            temporal: TemporalFilter::Ema {
+                alpha: 0.3,
+                beta: 0.2,
+            },
+            combine,
+            iterations: Some(6),
+        }
+    }
+
+    #[test]
+    fn tracked_loss_equals_recomputed_loss() {
+        for (space, combine, dims) in [
+            (SampleSpace::Scalar, Combine::Product, vec![16, 16, 4]),
+            (SampleSpace::Scalar, Combine::Separate(0.5), vec![12, 10, 3]),
+            (
+                SampleSpace::CosineHemisphere,
+                Combine::Product,
+                vec![40, 36, 2],
+            ),
+            (SampleSpace::Circle, Combine::Product, vec![9, 7]),
+        ] {
+            let p = params(space, combine);
+            let out = generate(&p, &dims, 5, &mut |_, _| {});
+            let exact = loss(&p, &dims, &out.samples);
+            let init = loss(&p, &dims, &initial_samples(&p, &dims, 5));
+            assert!((init - out.initial_loss).abs() < 1e-9 * init.abs());
+            assert!(
+                (exact - out.loss()).abs() < 1e-9 * exact.abs(),
+                "{space:?} {dims:?}: tracked {} exact {exact}",
+                out.loss()
+            );
+            assert!(exact < init, "{space:?}: {exact} !< {init}");
+        }
+    }
+}

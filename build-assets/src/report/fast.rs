@@ -1,0 +1,277 @@
+//! FAST report: optimisation time, loss and loss-against-time curves on 1 and 2 threads, and the
+//! error after the filter each mask was optimised for, against the baselines (FAST §6).
+
+use crate::analysis::filtered::{Denoiser, filtered_rmse};
+use crate::export::plot::{PALETTE, Series, line_plot};
+use crate::fast::{self, Combine, FastParams, Filter, Outcome, SampleSpace, TemporalFilter};
+use crate::spec::{Format, Histogram, Kind, TextureSpec};
+use serde::Serialize;
+use std::path::Path;
+use std::time::Instant;
+
+/// One optimisation run.
+#[derive(Clone, Debug, Serialize)]
+pub struct Run {
+    /// What was optimised.
+    pub case: String,
+    /// Worker threads.
+    pub threads: usize,
+    /// Wall time in seconds.
+    pub seconds: f64,
+    /// Loss (eq. 7) of the stratified start.
+    pub initial_loss: f64,
+    /// Final loss.
+    pub final_loss: f64,
+    /// Rounds until convergence.
+    pub rounds: usize,
+    /// `(seconds, loss)` after each round.
+    pub curve: Vec<(f64, f64)>,
+}
+
+/// Error after filtering of one mask.
+#[derive(Clone, Debug, Serialize)]
+pub struct FilteredError {
+    /// Mask.
+    pub mask: String,
+    /// RMSE after spatial filter + EMA (the product target).
+    pub spatial_and_ema: f64,
+    /// RMSE after the EMA alone.
+    pub ema_only: f64,
+    /// RMSE after the spatial filter alone, per frame.
+    pub spatial_only: f64,
+}
+
+/// The whole FAST report.
+#[derive(Clone, Debug, Serialize)]
+pub struct FastReport {
+    /// Optimisation runs.
+    pub runs: Vec<Run>,
+    /// Errors after filtering, 64×64×16 scalar masks.
+    pub errors: Vec<FilteredError>,
+}
+
+/// The scalar case: Gaussian σ 1.3435 × EMA (α 0.1, β 0.1), product.
+pub fn scalar_params(combine: Combine) -> FastParams {
+    FastParams {
+        sample_space: SampleSpace::Scalar,
+        distribution: fast::Distribution::Uniform,
+        spatial: Filter::Gauss { sigma: 1.3435 },
+        temporal: TemporalFilter::Ema {
+            alpha: 0.1,
+            beta: 0.1,
+        },
+        combine,
+        iterations: None,
+    }
+}
+
+/// The paper's timing case: cosine-hemisphere vectors, box 5×5 × EMA, product.
+pub fn cosine_params() -> FastParams {
+    FastParams {
+        sample_space: SampleSpace::CosineHemisphere,
+        distribution: fast::Distribution::Uniform,
+        spatial: Filter::Box { size: 5 },
+        temporal: TemporalFilter::Ema {
+            alpha: 0.1,
+            beta: 0.1,
+        },
+        combine: Combine::Product,
+        iterations: None,
+    }
+}
+
+fn timed(case: &str, params: &FastParams, dims: &[usize], threads: usize) -> (Run, Outcome) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool");
+    let start = Instant::now();
+    let out = pool.install(|| fast::generate(params, dims, 1, &mut |_, _| {}));
+    let seconds = start.elapsed().as_secs_f64();
+    let run = Run {
+        case: case.to_string(),
+        threads,
+        seconds,
+        initial_loss: out.initial_loss,
+        final_loss: out.loss(),
+        rounds: out.curve.len(),
+        curve: std::iter::once((0.0, out.initial_loss))
+            .chain(out.curve.iter().map(|p| (p.seconds, p.loss)))
+            .collect(),
+    };
+    (run, out)
+}
+
+/// Scalar values in `[0, 1)` of a baseline spec.
+fn baseline(kind: Kind, dims: &[usize]) -> Vec<f64> {
+    let spec = TextureSpec {
+        name: "B".into(),
+        kind,
+        dims: dims.to_vec(),
+        seed: 1,
+        format: Format::F32,
+    };
+    crate::generate(&spec, &mut |_, _| {}).values()
+}
+
+/// Errors after filtering of a scalar mask (values in `[0, 1)`).
+pub fn errors(mask: &str, values: &[f64], dims: [usize; 3]) -> FilteredError {
+    let taps = Filter::Gauss { sigma: 1.3435 }.taps();
+    let d = |spatial: Vec<f64>, ema: Option<f64>| Denoiser {
+        spatial,
+        ema_alpha: ema,
+    };
+    FilteredError {
+        mask: mask.into(),
+        spatial_and_ema: filtered_rmse(values, dims, &d(taps.clone(), Some(0.1))),
+        ema_only: filtered_rmse(values, dims, &d(vec![1.0], Some(0.1))),
+        spatial_only: filtered_rmse(values, dims, &d(taps, None)),
+    }
+}
+
+/// Runs the report; writes `fast_loss_*.png` into `out`. `full` adds the 128×128×32
+/// cosine-hemisphere case (minutes).
+pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<FastReport, String> {
+    let dims = [64, 64, 16];
+    let mut runs = Vec::new();
+    let mut errs = Vec::new();
+    let product = scalar_params(Combine::Product);
+    let mut outcome = None;
+    for threads in [1, 2] {
+        let (run, o) = timed(
+            "scalar 64x64x16 gauss1.3435 x ema(0.1,0.1) product",
+            &product,
+            &dims,
+            threads,
+        );
+        log(&format!(
+            "  {} [{} thread(s)]: {:.2} s, {} rounds, loss {:.1} -> {:.1} ({:.2} %)",
+            run.case,
+            threads,
+            run.seconds,
+            run.rounds,
+            run.initial_loss,
+            run.final_loss,
+            100.0 * run.final_loss / run.initial_loss
+        ));
+        if let Some(prev) = &outcome {
+            let prev: &Outcome = prev;
+            if prev.samples != o.samples {
+                return Err("FAST output differs between 1 and 2 threads".into());
+            }
+        }
+        runs.push(run);
+        outcome = Some(o);
+    }
+    let samples = outcome.expect("ran").samples;
+    let (sep, _) = timed(
+        "scalar 64x64x16 separate(0.5)",
+        &scalar_params(Combine::Separate(0.5)),
+        &dims,
+        2,
+    );
+    let sep_samples = fast::generate(
+        &scalar_params(Combine::Separate(0.5)),
+        &dims,
+        1,
+        &mut |_, _| {},
+    )
+    .samples;
+    runs.push(sep);
+    let d3 = [64, 64, 16];
+    errs.push(errors("fast product", &samples, d3));
+    errs.push(errors("fast separate 0.5", &sep_samples, d3));
+    errs.push(errors("white", &baseline(Kind::White, &dims), d3));
+    errs.push(errors(
+        "independent2d",
+        &baseline(
+            Kind::Independent2d {
+                sigma: 1.9,
+                initial_density: 0.1,
+            },
+            &dims,
+        ),
+        d3,
+    ));
+    errs.push(errors(
+        "golden",
+        &baseline(
+            Kind::Golden {
+                sigma: 1.9,
+                initial_density: 0.1,
+            },
+            &dims,
+        ),
+        d3,
+    ));
+    errs.push(errors(
+        "stbn (slice histogram)",
+        &baseline(
+            Kind::Stbn {
+                sigma_xy: 1.9,
+                sigma_t: 1.9,
+                initial_density: 0.1,
+                histogram: Histogram::Slice,
+            },
+            &dims,
+        ),
+        d3,
+    ));
+    if full {
+        for threads in [1, 2] {
+            let (run, _) = timed(
+                "cosine hemisphere 128x128x32 box5 x ema(0.1,0.1) product",
+                &cosine_params(),
+                &[128, 128, 32],
+                threads,
+            );
+            log(&format!(
+                "  {} [{} thread(s)]: {:.1} s, {} rounds, loss {:.1} -> {:.1} ({:.2} %)",
+                run.case,
+                threads,
+                run.seconds,
+                run.rounds,
+                run.initial_loss,
+                run.final_loss,
+                100.0 * run.final_loss / run.initial_loss
+            ));
+            runs.push(run);
+        }
+    }
+    // One plot per case: loss / initial loss against seconds, one line per thread count.
+    let mut cases: Vec<&str> = runs.iter().map(|r| r.case.as_str()).collect();
+    cases.dedup();
+    for (ci, case) in cases.iter().enumerate() {
+        let series: Vec<Series> = runs
+            .iter()
+            .filter(|r| r.case == *case)
+            .enumerate()
+            .map(|(i, r)| Series {
+                label: format!("{} thread(s)", r.threads),
+                color: PALETTE[i],
+                points: r
+                    .curve
+                    .iter()
+                    .map(|&(s, l)| (s, l / r.initial_loss))
+                    .collect(),
+            })
+            .collect();
+        let path = out.join(format!("fast_loss_{ci}.png"));
+        let range = line_plot(&path, &series, false)?;
+        log(&format!(
+            "  plot {}: {case}; x = seconds [{:.2}, {:.2}], y = loss / initial [{:.4}, {:.4}]; {}",
+            path.display(),
+            range[0],
+            range[1],
+            range[2],
+            range[3],
+            series
+                .iter()
+                .enumerate()
+                .map(|(i, s)| format!("{} = {}", ["red", "blue"][i.min(1)], s.label))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    Ok(FastReport { runs, errors: errs })
+}

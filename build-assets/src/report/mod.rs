@@ -1,0 +1,4 @@
+//! The speed-against-error reports of the `noisebake report` command: every time is printed
+//! next to the error it was bought with.
+
+pub mod fast;

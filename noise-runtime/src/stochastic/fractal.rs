@@ -1,0 +1,123 @@
+//! Fractal sums of octaves (fBm, Perlin 1985; eq. 9) and the one-octave estimator (eq. 10–11,
+//! Algorithm 2): the octave is importance-sampled by its weight, found by a linear search of the
+//! CDF, and the chosen octave's noise may itself be stochastic (it receives the remapped ξ).
+//!
+//! Algorithm 2 in the paper normalises by `(1 − w^(n+1))/(1 − w)`; the sum of the `n` weights
+//! `w^0 … w^(n−1)` is `(1 − w^n)/(1 − w)`, which is what we use (summed directly, so gain → 1
+//! and gain = 0 need no special case).
+
+use super::estimators::{ONE_BELOW, sanitize_xi};
+use super::perlin::{perlin3, perlin3_stochastic};
+
+/// Octaves, lacunarity (frequency factor per octave) and gain (amplitude factor per octave).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fractal {
+    /// Number of octaves, clamped to `1..=32`.
+    pub octaves: u32,
+    /// Frequency factor per octave, clamped to `[-1024, 1024]`.
+    pub lacunarity: f32,
+    /// Amplitude factor per octave, clamped to `[-16, 16]` (negative gains alternate sign).
+    pub gain: f32,
+}
+
+impl Default for Fractal {
+    /// 10 octaves, lacunarity 2, gain ½ (the paper's settings).
+    fn default() -> Self {
+        Fractal::new(10, 2.0, 0.5)
+    }
+}
+
+impl Fractal {
+    /// A fractal sum.
+    pub const fn new(octaves: u32, lacunarity: f32, gain: f32) -> Self {
+        Fractal {
+            octaves,
+            lacunarity,
+            gain,
+        }
+    }
+
+    #[inline(always)]
+    fn sane(self) -> (u32, f32, f32) {
+        let c = |x: f32, m: f32| if x >= -m { x.min(m) } else { -m };
+        let gain = if self.gain.is_nan() {
+            0.0
+        } else {
+            c(self.gain, 16.0)
+        };
+        let lac = if self.lacunarity.is_nan() {
+            1.0
+        } else {
+            c(self.lacunarity, 1024.0)
+        };
+        (self.octaves.clamp(1, 32), lac, gain)
+    }
+}
+
+/// `Σ_o gain^o · noise(p · lacunarity^o, o)` over the octaves (eq. 9).
+#[inline]
+pub fn fractal(p: [f32; 3], f: Fractal, mut noise: impl FnMut([f32; 3], u32) -> f32) -> f32 {
+    let (n, lac, gain) = f.sane();
+    let (mut amp, mut freq, mut sum) = (1.0f32, 1.0f32, 0.0f32);
+    for o in 0..n {
+        sum += amp * noise([p[0] * freq, p[1] * freq, p[2] * freq], o);
+        amp *= gain;
+        freq *= lac;
+    }
+    sum
+}
+
+/// One-sample estimator of [`fractal`] (Algorithm 2): octave `o` is chosen with probability
+/// `|gain^o| / Σ|gain^i|`, and `noise(p · lacunarity^o, o, ξ')` is scaled by the sum; `ξ'` is ξ
+/// remapped within the chosen octave's interval, so the noise can be stochastic too.
+#[inline]
+pub fn fractal_stochastic(
+    p: [f32; 3],
+    f: Fractal,
+    xi: f32,
+    noise: impl FnOnce([f32; 3], u32, f32) -> f32,
+) -> f32 {
+    let (n, lac, gain) = f.sane();
+    let g = gain.abs();
+    let mut total = 0.0f32;
+    let mut a = 1.0f32;
+    for _ in 0..n {
+        total += a;
+        a *= g;
+    }
+    let mut target = sanitize_xi(xi) * total;
+    let (mut amp, mut freq, mut o) = (1.0f32, 1.0f32, 0u32);
+    while o + 1 < n && target >= amp {
+        target -= amp;
+        amp *= g;
+        freq *= lac;
+        o += 1;
+    }
+    let xi2 = if amp > 0.0 {
+        (target / amp).clamp(0.0, ONE_BELOW)
+    } else {
+        0.0
+    };
+    let sign = if gain < 0.0 && o % 2 == 1 { -1.0 } else { 1.0 };
+    sign * total * noise([p[0] * freq, p[1] * freq, p[2] * freq], o, xi2)
+}
+
+#[inline(always)]
+fn octave_seed(seed: u32, o: u32) -> u32 {
+    seed.wrapping_add(o.wrapping_mul(0x9e37_79b9))
+}
+
+/// fBm of 3D Perlin noise (each octave with its own seed).
+#[inline]
+pub fn fbm3(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
+    fractal(p, f, |q, o| perlin3(q, octave_seed(seed, o)))
+}
+
+/// One-sample estimator of [`fbm3`]: one octave, and in it one Perlin gradient — one hash and
+/// one dot product whatever the octave count.
+#[inline]
+pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
+    fractal_stochastic(p, f, xi, |q, o, x| {
+        perlin3_stochastic(q, octave_seed(seed, o), x)
+    })
+}

@@ -1,0 +1,146 @@
+//! Gabor noise (Lagae et al. 2009) with the stratified weights of Fajardo & Pharr §4: each unit
+//! cell holds a Poisson number `n_c` (mean λ) of impulses; impulse `i` has weight
+//! `±(i + ½)/n_c` and an isotropic random orientation ω, and contributes the Gabor kernel
+//! `e^(−π a² r²) cos(2π F₀ ω·(p − p_i))`, truncated at `r = 1` (the cell size). The estimator
+//! samples one impulse per cell with probability `(2i + 1)/n_c²`.
+
+use super::estimators::sanitize_xi;
+use super::hash::{hash3, mix, unit};
+use crate::math::{cos_turns, exp_neg, split, sqrt_fast};
+
+/// Gabor noise parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Gabor {
+    /// Mean impulses per cell (λ), clamped to `[0.1, 32]`.
+    pub impulses: f32,
+    /// Kernel frequency F₀ in cycles per cell, clamped to `[0, 16]`.
+    pub frequency: f32,
+}
+
+impl Default for Gabor {
+    /// λ = 8 impulses per cell, F₀ = 2.
+    fn default() -> Self {
+        Gabor {
+            impulses: 8.0,
+            frequency: 2.0,
+        }
+    }
+}
+
+/// `π a²` with the envelope down to 5 % at the truncation radius 1: `a² = ln 20 / π`.
+const PI_A2: f32 = 2.995_732_3;
+
+impl Gabor {
+    #[inline(always)]
+    fn sane(self) -> (f32, f32) {
+        let lambda = if self.impulses >= 0.1 {
+            self.impulses.min(32.0)
+        } else {
+            0.1
+        };
+        let f0 = if self.frequency >= 0.0 {
+            self.frequency.min(16.0)
+        } else {
+            0.0
+        };
+        (lambda, f0)
+    }
+}
+
+/// Poisson-distributed count with mean `lambda` from the uniform `u` (inversion, at most 64).
+#[inline(always)]
+fn poisson(lambda: f32, u: f32) -> u32 {
+    let mut p = exp_neg(-lambda);
+    let mut cdf = p;
+    let mut k = 0;
+    while u > cdf && k < 64 {
+        k += 1;
+        p *= lambda / k as f32;
+        cdf += p;
+    }
+    k
+}
+
+/// Kernel value of impulse `i` of cell hash `h` at offset `d` from the cell origin.
+#[inline(always)]
+fn term(h: u32, i: u32, d: [f32; 3], f0: f32) -> (f32, f32) {
+    let a = mix(h ^ i.wrapping_mul(0x9e37_79b9));
+    let b = mix(a);
+    let c = mix(b);
+    let e = mix(c);
+    let g = mix(e);
+    let x = d[0] - unit(a);
+    let y = d[1] - unit(b);
+    let z = d[2] - unit(c);
+    let r2 = x * x + y * y + z * z;
+    let sign = if g & 1 == 0 { 1.0 } else { -1.0 };
+    if r2 >= 1.0 {
+        return (0.0, sign);
+    }
+    // Isotropic orientation: z uniform in [−1, 1], azimuth uniform.
+    let oz = 1.0 - 2.0 * unit(e);
+    let rr = sqrt_fast(1.0 - oz * oz);
+    let phi = unit(g);
+    let (ox, oy) = (rr * cos_turns(phi), rr * cos_turns(phi - 0.25));
+    let k = exp_neg(-PI_A2 * r2) * cos_turns(f0 * (ox * x + oy * y + oz * z));
+    (k, sign)
+}
+
+#[inline(always)]
+fn cells(p: [f32; 3], seed: u32, mut each: impl FnMut(u32, [f32; 3])) {
+    let (cx, fx) = split(p[0]);
+    let (cy, fy) = split(p[1]);
+    let (cz, fz) = split(p[2]);
+    for dz in -1..=1 {
+        for dy in -1..=1 {
+            for dx in -1..=1 {
+                let h = hash3(
+                    cx.wrapping_add(dx),
+                    cy.wrapping_add(dy),
+                    cz.wrapping_add(dz),
+                    seed,
+                );
+                each(h, [fx - dx as f32, fy - dy as f32, fz - dz as f32]);
+            }
+        }
+    }
+}
+
+/// 3D Gabor noise: `Σ_c Σ_i ±(i + ½)/n_c · K_i(p)`.
+#[inline]
+pub fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
+    let (lambda, f0) = g.sane();
+    let mut sum = 0.0;
+    cells(p, seed, |h, d| {
+        let n = poisson(lambda, unit(mix(h ^ 0x2545_f491)));
+        let inv = 1.0 / n.max(1) as f32;
+        for i in 0..n {
+            let (k, s) = term(h, i, d, f0);
+            sum += s * (i as f32 + 0.5) * inv * k;
+        }
+    });
+    sum
+}
+
+/// One-sample estimator of [`gabor3`]: one importance-sampled impulse per cell, weighted by
+/// `n_c / 2`.
+#[inline]
+pub fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
+    let (lambda, f0) = g.sane();
+    let xi = sanitize_xi(xi);
+    let mut sum = 0.0;
+    cells(p, seed, |h, d| {
+        let n = poisson(lambda, unit(mix(h ^ 0x2545_f491)));
+        if n == 0 {
+            return;
+        }
+        let mut x = xi + unit(mix(h ^ 0x51ed_270b));
+        if x >= 1.0 {
+            x -= 1.0;
+        }
+        let i = ((n as f32 * sqrt_fast(x)) as u32).min(n - 1);
+        let (k, s) = term(h, i, d, f0);
+        sum += s * 0.5 * n as f32 * k;
+    });
+    sum
+}

@@ -1,0 +1,57 @@
+//! Procedural noise, each function both deterministic and as an unbiased one-sample Monte Carlo
+//! estimator (Fajardo & Pharr, "Stochastic procedural noise"): Perlin and simplex noise, fractal
+//! sums, sparse convolution, Gabor and smooth Voronoi, plus Worley F1.
+//!
+//! A stochastic function takes one uniform number `ξ ∈ [0, 1]` (from a blue-noise mask's
+//! [`get_k`](crate::Mask3::get_k), a low-discrepancy grid, or white noise) and returns a value
+//! whose **expectation over ξ is the deterministic value**, at a fraction of the cost: it
+//! evaluates one lattice gradient instead of `2^d` (Algorithm 1), one octave instead of `n`
+//! (Algorithm 2), one impulse per cell instead of `n` (eq. 8), or a cheap approximation most of
+//! the time (Russian roulette, Algorithm 3). Inside a Monte Carlo renderer, where every pixel
+//! already averages many samples, the extra variance is small against the time saved.
+//!
+//! # When not to use them (Jensen's inequality)
+//!
+//! `E[g(X)] ≠ g(E[X])` for a non-linear `g`. A stochastic value is only unbiased where it enters
+//! the rendered integral **linearly**: an albedo, a density or scattering coefficient in delta
+//! or ratio tracking, an emission. Fed through a non-linear function it is biased: bump or
+//! displacement mapping (normals from a noisy height), roughness, a `pow`/`smoothstep` colour
+//! ramp, or squaring a density. Use the deterministic function there, or write the non-linear
+//! function as a product of independent estimates (a square is the product of two evaluations
+//! with independent ξ, paper §7.2).
+//!
+//! # Hard cases
+//!
+//! Every function is total: ξ of exactly 0 and exactly 1 (1 is treated as the largest f32
+//! below 1), NaN ξ (treated as 0), fade weights that round to exactly 0 or 1 (then the other
+//! corner is never chosen, so no `0/0`), octave counts clamped to `1..=32`, any gain and
+//! lacunarity (clamped to `[-16, 16]` and `[-1024, 1024]` so the geometric weights stay finite),
+//! and coordinates anywhere, including ±10^7 and beyond, where f32 has no fractional bits left
+//! and the noise degenerates to its lattice values without NaN or infinity.
+
+mod estimators;
+mod fractal;
+mod gabor;
+mod hash;
+mod perlin;
+mod simplex;
+mod sparse;
+mod voronoi;
+
+pub use estimators::{
+    ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
+};
+pub use fractal::{Fractal, fbm3, fbm3_stochastic, fractal, fractal_stochastic};
+pub use gabor::{Gabor, gabor3, gabor3_stochastic};
+pub use hash::{hash2, hash3, hash4};
+pub use perlin::{
+    perlin2, perlin2_grad, perlin2_stochastic, perlin3, perlin3_grad, perlin3_stochastic, perlin4,
+    perlin4_stochastic,
+};
+pub use simplex::{simplex3, simplex3_stochastic};
+pub use sparse::{
+    fbm_sparse_conv3, fbm_sparse_conv3_stochastic, sparse_conv3, sparse_conv3_stochastic,
+};
+pub use voronoi::{
+    SMOOTH_VORONOI_Q, feature_point3, smooth_voronoi3, smooth_voronoi3_stochastic, worley3_f1,
+};

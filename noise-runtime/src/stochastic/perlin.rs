@@ -1,0 +1,264 @@
+//! Improved Perlin noise (Perlin 2002: quintic fade, hashed gradients) in 2D, 3D and 4D, and its
+//! one-sample estimator (Fajardo & Pharr, Algorithm 1): the interpolation over the `2^d` lattice
+//! corners is a nested `lerp`, so one ξ, remapped after each axis (eq. 4), selects a single
+//! corner with probability equal to its interpolation weight, and only that corner's gradient
+//! is evaluated.
+
+use super::estimators::{pick, sanitize_xi};
+use super::hash::{hash2, hash3, hash4};
+use crate::math::split;
+
+/// The quintic fade `6t⁵ − 15t⁴ + 10t³`.
+#[inline(always)]
+fn fade(t: f32) -> f32 {
+    t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+}
+
+/// Its derivative `30 t² (t − 1)²`.
+#[inline(always)]
+fn dfade(t: f32) -> f32 {
+    let s = t * (t - 1.0);
+    30.0 * s * s
+}
+
+#[inline(always)]
+fn lerp(t: f32, a: f32, b: f32) -> f32 {
+    a + t * (b - a)
+}
+
+/// The 8 gradients of 2D noise (axes and diagonals).
+const GRAD2: [[f32; 2]; 8] = [
+    [1.0, 1.0],
+    [-1.0, 1.0],
+    [1.0, -1.0],
+    [-1.0, -1.0],
+    [1.0, 0.0],
+    [-1.0, 0.0],
+    [0.0, 1.0],
+    [0.0, -1.0],
+];
+
+/// The 12 cube-edge gradients of improved noise, padded to 16 as in Perlin 2002.
+const GRAD3: [[f32; 3]; 16] = [
+    [1.0, 1.0, 0.0],
+    [-1.0, 1.0, 0.0],
+    [1.0, -1.0, 0.0],
+    [-1.0, -1.0, 0.0],
+    [1.0, 0.0, 1.0],
+    [-1.0, 0.0, 1.0],
+    [1.0, 0.0, -1.0],
+    [-1.0, 0.0, -1.0],
+    [0.0, 1.0, 1.0],
+    [0.0, -1.0, 1.0],
+    [0.0, 1.0, -1.0],
+    [0.0, -1.0, -1.0],
+    [1.0, 1.0, 0.0],
+    [1.0, -1.0, 0.0],
+    [-1.0, 1.0, 0.0],
+    [0.0, -1.0, -1.0],
+];
+
+/// The 32 edge gradients of the tesseract: one axis zero, the other three ±1.
+const GRAD4: [[f32; 4]; 32] = {
+    let mut g = [[0.0f32; 4]; 32];
+    let mut i = 0;
+    while i < 32 {
+        let zero = i >> 3;
+        let mut axis = 0;
+        let mut bit = 0;
+        while axis < 4 {
+            if axis != zero {
+                g[i][axis] = if (i >> bit) & 1 == 0 { 1.0 } else { -1.0 };
+                bit += 1;
+            }
+            axis += 1;
+        }
+        i += 1;
+    }
+    g
+};
+
+#[inline(always)]
+fn g2(h: u32) -> [f32; 2] {
+    GRAD2[(h >> 29) as usize]
+}
+#[inline(always)]
+fn g3(h: u32) -> [f32; 3] {
+    GRAD3[(h >> 28) as usize]
+}
+#[inline(always)]
+fn g4(h: u32) -> [f32; 4] {
+    GRAD4[(h >> 27) as usize]
+}
+
+/// 2D Perlin noise, about `[-1, 1]`.
+#[inline]
+pub fn perlin2(p: [f32; 2], seed: u32) -> f32 {
+    perlin2_grad(p, seed).0
+}
+
+/// 2D Perlin noise and its analytic gradient `(∂n/∂x, ∂n/∂y)`.
+#[inline]
+pub fn perlin2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
+    let (ix, x) = split(p[0]);
+    let (iy, y) = split(p[1]);
+    let (u, v) = (fade(x), fade(y));
+    let (du, dv) = (dfade(x), dfade(y));
+    let mut n = 0.0;
+    let mut d = [0.0f32; 2];
+    for c in 0..4u32 {
+        let (cx, cy) = (c & 1, c >> 1);
+        let g = g2(hash2(
+            ix.wrapping_add(cx as i32),
+            iy.wrapping_add(cy as i32),
+            seed,
+        ));
+        let (ox, oy) = (x - cx as f32, y - cy as f32);
+        let dot = g[0] * ox + g[1] * oy;
+        let wx = if cx == 1 { u } else { 1.0 - u };
+        let wy = if cy == 1 { v } else { 1.0 - v };
+        let sx = if cx == 1 { du } else { -du };
+        let sy = if cy == 1 { dv } else { -dv };
+        n += wx * wy * dot;
+        d[0] += sx * wy * dot + wx * wy * g[0];
+        d[1] += wx * sy * dot + wx * wy * g[1];
+    }
+    (n, d)
+}
+
+/// One-sample estimator of [`perlin2`] (Algorithm 1): one gradient, one ξ.
+#[inline]
+pub fn perlin2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
+    let (ix, x) = split(p[0]);
+    let (iy, y) = split(p[1]);
+    let mut xi = sanitize_xi(xi);
+    let cx = pick(&mut xi, fade(x)) as i32;
+    let cy = pick(&mut xi, fade(y)) as i32;
+    let g = g2(hash2(ix.wrapping_add(cx), iy.wrapping_add(cy), seed));
+    g[0] * (x - cx as f32) + g[1] * (y - cy as f32)
+}
+
+/// 3D Perlin noise (improved noise), about `[-1, 1]`.
+#[inline]
+pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
+    let (ix, x) = split(p[0]);
+    let (iy, y) = split(p[1]);
+    let (iz, z) = split(p[2]);
+    let (u, v, w) = (fade(x), fade(y), fade(z));
+    let (x1, y1, z1) = (x - 1.0, y - 1.0, z - 1.0);
+    let (ix1, iy1, iz1) = (ix.wrapping_add(1), iy.wrapping_add(1), iz.wrapping_add(1));
+    let c = |i: i32, j: i32, k: i32, dx: f32, dy: f32, dz: f32| {
+        let g = g3(hash3(i, j, k, seed));
+        g[0] * dx + g[1] * dy + g[2] * dz
+    };
+    lerp(
+        w,
+        lerp(
+            v,
+            lerp(u, c(ix, iy, iz, x, y, z), c(ix1, iy, iz, x1, y, z)),
+            lerp(u, c(ix, iy1, iz, x, y1, z), c(ix1, iy1, iz, x1, y1, z)),
+        ),
+        lerp(
+            v,
+            lerp(u, c(ix, iy, iz1, x, y, z1), c(ix1, iy, iz1, x1, y, z1)),
+            lerp(u, c(ix, iy1, iz1, x, y1, z1), c(ix1, iy1, iz1, x1, y1, z1)),
+        ),
+    )
+}
+
+/// 3D Perlin noise and its analytic gradient.
+pub fn perlin3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
+    let mut cell = [0i32; 3];
+    let mut f = [0.0f32; 3];
+    for a in 0..3 {
+        (cell[a], f[a]) = split(p[a]);
+    }
+    let u = f.map(fade);
+    let du = f.map(dfade);
+    let mut n = 0.0;
+    let mut d = [0.0f32; 3];
+    for c in 0..8u32 {
+        let b = [c & 1, (c >> 1) & 1, c >> 2];
+        let g = g3(hash3(
+            cell[0].wrapping_add(b[0] as i32),
+            cell[1].wrapping_add(b[1] as i32),
+            cell[2].wrapping_add(b[2] as i32),
+            seed,
+        ));
+        let o = [f[0] - b[0] as f32, f[1] - b[1] as f32, f[2] - b[2] as f32];
+        let dot = g[0] * o[0] + g[1] * o[1] + g[2] * o[2];
+        let w: [f32; 3] = core::array::from_fn(|a| if b[a] == 1 { u[a] } else { 1.0 - u[a] });
+        let s: [f32; 3] = core::array::from_fn(|a| if b[a] == 1 { du[a] } else { -du[a] });
+        let weight = w[0] * w[1] * w[2];
+        n += weight * dot;
+        d[0] += s[0] * w[1] * w[2] * dot + weight * g[0];
+        d[1] += w[0] * s[1] * w[2] * dot + weight * g[1];
+        d[2] += w[0] * w[1] * s[2] * dot + weight * g[2];
+    }
+    (n, d)
+}
+
+/// One-sample estimator of [`perlin3`] (Algorithm 1 in 3D): one gradient instead of eight.
+#[inline]
+pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
+    let (ix, x) = split(p[0]);
+    let (iy, y) = split(p[1]);
+    let (iz, z) = split(p[2]);
+    let mut xi = sanitize_xi(xi);
+    let cx = pick(&mut xi, fade(x)) as i32;
+    let cy = pick(&mut xi, fade(y)) as i32;
+    let cz = pick(&mut xi, fade(z)) as i32;
+    let g = g3(hash3(
+        ix.wrapping_add(cx),
+        iy.wrapping_add(cy),
+        iz.wrapping_add(cz),
+        seed,
+    ));
+    g[0] * (x - cx as f32) + g[1] * (y - cy as f32) + g[2] * (z - cz as f32)
+}
+
+/// 4D Perlin noise (e.g. 3D noise animated over time).
+pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
+    let mut cell = [0i32; 4];
+    let mut f = [0.0f32; 4];
+    for a in 0..4 {
+        (cell[a], f[a]) = split(p[a]);
+    }
+    let u = f.map(fade);
+    let mut vals = [0.0f32; 16];
+    for (c, v) in vals.iter_mut().enumerate() {
+        let b: [i32; 4] = core::array::from_fn(|a| ((c >> a) & 1) as i32);
+        let g = g4(hash4(
+            cell[0].wrapping_add(b[0]),
+            cell[1].wrapping_add(b[1]),
+            cell[2].wrapping_add(b[2]),
+            cell[3].wrapping_add(b[3]),
+            seed,
+        ));
+        *v = (0..4).map(|a| g[a] * (f[a] - b[a] as f32)).sum();
+    }
+    // Collapse one axis at a time: x pairs first, then y, z, w.
+    let mut len = 16;
+    for t in u {
+        len /= 2;
+        for i in 0..len {
+            vals[i] = lerp(t, vals[2 * i], vals[2 * i + 1]);
+        }
+    }
+    vals[0]
+}
+
+/// One-sample estimator of [`perlin4`]: one gradient instead of sixteen.
+pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
+    let mut xi = sanitize_xi(xi);
+    let mut cell = [0i32; 4];
+    let mut o = [0.0f32; 4];
+    for a in 0..4 {
+        let (c, f) = split(p[a]);
+        let b = pick(&mut xi, fade(f)) as i32;
+        cell[a] = c.wrapping_add(b);
+        o[a] = f - b as f32;
+    }
+    let g = g4(hash4(cell[0], cell[1], cell[2], cell[3], seed));
+    g[0] * o[0] + g[1] * o[1] + g[2] * o[2] + g[3] * o[3]
+}

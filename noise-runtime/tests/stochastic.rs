@@ -1,0 +1,326 @@
+//! Stochastic noise: every estimator is unbiased (a statistical test with a fixed seed), and
+//! every function is total on the hard cases (ξ of 0 and 1, fade weights of exactly 0 and 1,
+//! degenerate fractal parameters, huge coordinates).
+
+use noise_runtime::stochastic::*;
+use proptest::prelude::*;
+
+/// SplitMix64 for reproducible test inputs.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+    fn unit(&mut self) -> f32 {
+        (self.next() >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+type Pair = (&'static str, fn([f32; 3]) -> f32, fn([f32; 3], f32) -> f32);
+
+fn pairs() -> Vec<Pair> {
+    vec![
+        (
+            "perlin2",
+            |p| perlin2([p[0], p[1]], 3),
+            |p, x| perlin2_stochastic([p[0], p[1]], 3, x),
+        ),
+        (
+            "perlin3",
+            |p| perlin3(p, 3),
+            |p, x| perlin3_stochastic(p, 3, x),
+        ),
+        (
+            "perlin4",
+            |p| perlin4([p[0], p[1], p[2], p[0] - p[1]], 3),
+            |p, x| perlin4_stochastic([p[0], p[1], p[2], p[0] - p[1]], 3, x),
+        ),
+        (
+            "simplex3",
+            |p| simplex3(p, 3),
+            |p, x| simplex3_stochastic(p, 3, x),
+        ),
+        (
+            "fbm3",
+            |p| fbm3(p, Fractal::new(6, 2.0, 0.5), 3),
+            |p, x| fbm3_stochastic(p, Fractal::new(6, 2.0, 0.5), 3, x),
+        ),
+        (
+            "sparse_conv3",
+            |p| sparse_conv3(p, 10, 3),
+            |p, x| sparse_conv3_stochastic(p, 10, 3, x),
+        ),
+        (
+            "fbm_sparse_conv3",
+            |p| fbm_sparse_conv3(p, Fractal::new(4, 2.0, 0.5), 6, 3),
+            |p, x| fbm_sparse_conv3_stochastic(p, Fractal::new(4, 2.0, 0.5), 6, 3, x),
+        ),
+        (
+            "gabor3",
+            |p| gabor3(p, Gabor::default(), 3),
+            |p, x| gabor3_stochastic(p, Gabor::default(), 3, x),
+        ),
+        (
+            "voronoi3",
+            |p| smooth_voronoi3(p, 3),
+            |p, x| smooth_voronoi3_stochastic(p, 3, SMOOTH_VORONOI_Q, x),
+        ),
+    ]
+}
+
+/// Test points: random, near lattice points, on cell borders and cell centres.
+fn points(rng: &mut Rng) -> Vec<[f32; 3]> {
+    let mut pts = Vec::new();
+    for _ in 0..30 {
+        pts.push([
+            rng.unit() * 40.0 - 20.0,
+            rng.unit() * 40.0 - 20.0,
+            rng.unit() * 40.0 - 20.0,
+        ]);
+    }
+    for k in 0..10 {
+        let base = (k as f32 - 5.0) * 3.0;
+        let e = 1e-3 * rng.unit();
+        pts.push([base + e, base - 2.0 + e, 7.0 - e]); // near a lattice point
+        pts.push([base + 0.5, base + 0.5, 0.5]); // cell centre (smooth Voronoi's 2×2×2 border)
+        pts.push([base + 0.999, 2.0 + 0.9999, 0.25]); // fade rounds to 1 in f32
+    }
+    pts
+}
+
+/// Mean over 2048 i.i.d. ξ at each point against the deterministic value. Under the null
+/// hypothesis (unbiased), a point lands beyond 3 standard errors with probability ≈ 0.27 %, so
+/// of the 60 points of each function more than 3 such misses (≥ 5 %) has probability below
+/// 0.1 % per function; and no point may be beyond 6 standard errors (probability 2e-9).
+#[test]
+fn every_estimator_is_unbiased() {
+    for (name, det, sto) in pairs() {
+        let mut rng = Rng(0x5eed ^ name.len() as u64);
+        let pts = points(&mut rng);
+        let mut misses = 0;
+        for p in &pts {
+            let exact = det(*p) as f64;
+            let n = 2048;
+            let (mut s, mut s2) = (0.0f64, 0.0f64);
+            for _ in 0..n {
+                let v = sto(*p, rng.unit()) as f64;
+                s += v;
+                s2 += v * v;
+            }
+            let mean = s / n as f64;
+            let var = (s2 / n as f64 - mean * mean).max(0.0);
+            let se = (var / n as f64).sqrt();
+            let err = (mean - exact).abs();
+            // Rounding (f32 sums in a different order) and corners or octaves so unlikely that
+            // 2048 draws miss them (probability < 1/2048, so their share of the mean is below
+            // ~5e-4 of the value's scale): a small allowance beside the statistical bound.
+            let tol = 5e-4 * (1.0 + exact.abs());
+            assert!(
+                err <= 6.0 * se + tol,
+                "{name} at {p:?}: mean {mean} vs {exact} (se {se})"
+            );
+            if err > 3.0 * se + tol {
+                misses += 1;
+            }
+        }
+        assert!(
+            misses <= 3,
+            "{name}: {misses} of {} points beyond 3 se",
+            pts.len()
+        );
+    }
+}
+
+#[test]
+fn lerp_and_roulette_building_blocks_are_unbiased() {
+    // Exact expectation over a fine stratified ξ grid.
+    let n = 1 << 16;
+    let grid = |f: &dyn Fn(f32) -> f32| {
+        (0..n)
+            .map(|i| f((i as f32 + 0.5) / n as f32) as f64)
+            .sum::<f64>()
+            / n as f64
+    };
+    for t in [0.0, 0.1, 0.5, 0.9, 1.0] {
+        let m = grid(&|x| lerp_estimate(t, x, || 2.0f32, || 5.0f32));
+        assert!((m - (2.0 + 3.0 * t as f64)).abs() < 1e-4, "lerp t {t}: {m}");
+        let m = grid(&|x| bilerp_estimate(t, 0.3, x, |i, j| (i * 2 + j) as f32));
+        let want = 2.0 * t as f64 + 0.3;
+        assert!((m - want).abs() < 1e-3, "bilerp t {t}: {m} vs {want}");
+    }
+    for q in [0.0, 0.5, 0.875] {
+        let m = grid(&|x| russian_roulette(q, x, 0.5, || 0.8));
+        assert!((m - 0.8).abs() < 1e-4, "roulette q {q}: {m}");
+    }
+}
+
+#[test]
+fn perlin_gradient_matches_finite_differences() {
+    let mut rng = Rng(9);
+    for _ in 0..200 {
+        let p = [rng.unit() * 10.0, rng.unit() * 10.0, rng.unit() * 10.0];
+        let (v, g) = perlin3_grad(p, 1);
+        assert!((v - perlin3(p, 1)).abs() < 1e-5);
+        let h = 1e-2f32;
+        for a in 0..3 {
+            let (mut lo, mut hi) = (p, p);
+            lo[a] -= h;
+            hi[a] += h;
+            let fd = (perlin3(hi, 1) - perlin3(lo, 1)) / (2.0 * h);
+            assert!((fd - g[a]).abs() < 0.02, "axis {a}: fd {fd} vs {}", g[a]);
+        }
+        let (v2, g2) = perlin2_grad([p[0], p[1]], 1);
+        assert!((v2 - perlin2([p[0], p[1]], 1)).abs() < 1e-5);
+        let fd = (perlin2([p[0] + h, p[1]], 1) - perlin2([p[0] - h, p[1]], 1)) / (2.0 * h);
+        assert!((fd - g2[0]).abs() < 0.02);
+    }
+}
+
+#[test]
+fn worley_f1_is_the_true_nearest_point() {
+    // Brute force over a 5×5×5 block of cells: the pruned 27-cell search must agree.
+    let mut rng = Rng(4);
+    for _ in 0..2000 {
+        let p = [
+            rng.unit() * 50.0 - 25.0,
+            rng.unit() * 50.0 - 25.0,
+            rng.unit() * 50.0 - 25.0,
+        ];
+        let c = p.map(|x| x.floor() as i32);
+        let mut best = f32::MAX;
+        for dz in -2..=2 {
+            for dy in -2..=2 {
+                for dx in -2..=2 {
+                    let cell = [c[0] + dx, c[1] + dy, c[2] + dz];
+                    let q = feature_point3(cell, 7);
+                    let d: f32 = (0..3)
+                        .map(|a| {
+                            let t = p[a] - (cell[a] as f32 + q[a]);
+                            t * t
+                        })
+                        .sum();
+                    best = best.min(d.sqrt());
+                }
+            }
+        }
+        assert!((worley3_f1(p, 7) - best).abs() < 2e-5, "{p:?}");
+    }
+}
+
+fn hard_xis() -> [f32; 7] {
+    [
+        0.0,
+        1.0,
+        0.999_999_94,
+        f32::MIN_POSITIVE,
+        -1.0,
+        2.0,
+        f32::NAN,
+    ]
+}
+
+fn hard_coords() -> [f32; 9] {
+    [
+        0.0,
+        0.9999,
+        -0.9999,
+        1e7,
+        -1e7,
+        3.5e9,
+        -1e20,
+        f32::MAX,
+        f32::MIN,
+    ]
+}
+
+#[test]
+fn hard_cases_are_finite() {
+    let fracs = [
+        Fractal::new(1, 2.0, 0.5),
+        Fractal::new(32, 2.0, 0.5),
+        Fractal::new(0, 2.0, 0.5),
+        Fractal::new(500, 2.0, 0.5),
+        Fractal::new(10, 2.0, 1.0),
+        Fractal::new(10, 2.0, 0.0),
+        Fractal::new(32, 1e30, 1e30),
+        Fractal::new(32, f32::NAN, f32::NAN),
+        Fractal::new(32, -3.0, -0.9),
+    ];
+    for &c in &hard_coords() {
+        let p = [c, -c * 0.5, 0.25];
+        for &x in &hard_xis() {
+            let mut vals = vec![
+                perlin2([c, 0.3], 1),
+                perlin2_stochastic([c, 0.3], 1, x),
+                perlin3(p, 1),
+                perlin3_grad(p, 1).0,
+                perlin3_stochastic(p, 1, x),
+                perlin4([c, 1.5, c, 0.2], 1),
+                perlin4_stochastic([c, 1.5, c, 0.2], 1, x),
+                simplex3(p, 1),
+                simplex3_stochastic(p, 1, x),
+                sparse_conv3(p, 10, 1),
+                sparse_conv3_stochastic(p, 10, 1, x),
+                gabor3(p, Gabor::default(), 1),
+                gabor3_stochastic(p, Gabor::default(), 1, x),
+                smooth_voronoi3(p, 1),
+                smooth_voronoi3_stochastic(p, 1, SMOOTH_VORONOI_Q, x),
+                smooth_voronoi3_stochastic(p, 1, 1.0, x),
+                worley3_f1(p, 1),
+            ];
+            vals.extend(perlin3_grad(p, 1).1);
+            for f in fracs {
+                vals.push(fbm3(p, f, 1));
+                vals.push(fbm3_stochastic(p, f, 1, x));
+                vals.push(fbm_sparse_conv3(p, f, 4, 1));
+                vals.push(fbm_sparse_conv3_stochastic(p, f, 4, 1, x));
+            }
+            for (i, v) in vals.iter().enumerate() {
+                assert!(v.is_finite(), "value {i} at coord {c}, ξ {x}: {v}");
+            }
+        }
+    }
+}
+
+#[test]
+fn fbm_with_gain_one_samples_octaves_uniformly() {
+    // gain = 1: every octave has probability 1/n; the estimator's mean over a ξ grid is the sum.
+    let f = Fractal::new(8, 2.0, 1.0);
+    let p = [0.3, 1.7, -2.2];
+    let n = 1 << 15;
+    let m: f64 = (0..n)
+        .map(|i| fbm3_stochastic(p, f, 5, (i as f32 + 0.5) / n as f32) as f64)
+        .sum::<f64>()
+        / n as f64;
+    assert!(
+        (m - fbm3(p, f, 5) as f64).abs() < 2e-3,
+        "{m} vs {}",
+        fbm3(p, f, 5)
+    );
+}
+
+proptest! {
+    #[test]
+    fn any_finite_input_gives_a_finite_value(
+        x in -1e12f32..1e12, y in -1e12f32..1e12, z in -1e3f32..1e3,
+        xi in 0.0f32..=1.0, oct in 0u32..40, lac in -2000f32..2000.0, gain in -40f32..40.0,
+    ) {
+        let p = [x, y, z];
+        let f = Fractal::new(oct, lac, gain);
+        for v in [
+            perlin3_stochastic(p, 2, xi),
+            simplex3_stochastic(p, 2, xi),
+            fbm3(p, f, 2),
+            fbm3_stochastic(p, f, 2, xi),
+            fbm_sparse_conv3_stochastic(p, f, 3, 2, xi),
+            smooth_voronoi3_stochastic(p, 2, SMOOTH_VORONOI_Q, xi),
+            gabor3_stochastic(p, Gabor::default(), 2, xi),
+        ] {
+            prop_assert!(v.is_finite());
+        }
+    }
+}
