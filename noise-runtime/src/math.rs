@@ -87,17 +87,16 @@ pub fn fract_f64(v: f64) -> f64 {
 pub fn split(x: f32) -> (i32, f32) {
     let t = x as i32; // saturating, NaN → 0
     let ft = t as f32;
-    let (cell, fl) = if ft > x {
-        (t.saturating_sub(1), ft - 1.0)
-    } else {
-        (t, ft)
-    };
-    let f = x - fl;
-    if (0.0..1.0).contains(&f) {
-        (cell, f)
-    } else {
-        (cell, 0.0)
-    }
+    // Branch-free floor: truncation rounds negatives up, so step down by one when it did
+    // (the sign bit of x − ⌊x⌋_trunc). Integer bit tests rather than float compares: LLVM turns
+    // float selects into branches on x86, which mispredict on random input.
+    let down = (x - ft).to_bits() >> 31;
+    let cell = t.saturating_sub(down as i32);
+    let f = x - (ft - f32::from_bits(1.0f32.to_bits() & down.wrapping_neg()));
+    // Keep f only when it is a valid offset in [0, 1) (NaN or infinite inputs give 0): for
+    // non-negative floats the bit patterns order like the values.
+    let keep = (f.to_bits() < 0x3f80_0000) as u32;
+    (cell, f32::from_bits(f.to_bits() & keep.wrapping_neg()))
 }
 
 /// `e^x` for `x ≤ 0` in f32 (relative error below 2e-7); `x > 0` is clamped to 0 (gives 1),

@@ -285,8 +285,63 @@ fn report(section: &str, json: Option<&Path>, out: &Path, full: bool) -> Result<
             serde_json::to_value(&r).map_err(|e| e.to_string())?,
         );
     }
+    let mut rows_json = None;
+    if matches!(section, "all" | "stochastic") {
+        use build_assets::report::stochastic;
+        println!("stochastic noise (3D unless named, single thread, random-order points):");
+        if !stochastic::HAS_PEERS {
+            println!(
+                "  (peers not compiled in: add `--features peers` to measure noise-functions and fastnoise-lite in this run)"
+            );
+        }
+        let rows = stochastic::run();
+        println!(
+            "  {:<18} {:<16} {:>9} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10}",
+            "noise",
+            "variant",
+            "ns/eval",
+            "speedup",
+            "rmse@1",
+            "rmse@4",
+            "rmse@16",
+            "rmse@64",
+            "stbn@16",
+            "bias"
+        );
+        for r in &rows {
+            let g = |m: &Option<std::collections::BTreeMap<String, f64>>, k: &str| {
+                m.as_ref()
+                    .map_or("-".to_string(), |m| format!("{:.4}", m[k]))
+            };
+            println!(
+                "  {:<18} {:<16} {:>9.1} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10}",
+                r.noise,
+                r.variant,
+                r.ns_per_eval,
+                r.speedup.map_or("-".into(), |s| format!("{s:.1}x")),
+                g(&r.rmse, "1"),
+                g(&r.rmse, "4"),
+                g(&r.rmse, "16"),
+                g(&r.rmse, "64"),
+                g(&r.rmse_stbn, "16"),
+                r.bias.map_or("-".into(), |b| format!("{b:+.1e}")),
+            );
+        }
+        rows_json = Some(serde_json::to_value(&rows).map_err(|e| e.to_string())?);
+    }
     if let Some(path) = json {
-        let text = serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?;
+        // The stochastic section alone is a list of rows (the documented format); with FAST
+        // included the document is an object with one key per section.
+        let value = match (section, rows_json) {
+            ("stochastic", Some(rows)) => rows,
+            (_, rows) => {
+                if let Some(rows) = rows {
+                    doc.insert("stochastic".into(), rows);
+                }
+                serde_json::Value::Object(doc)
+            }
+        };
+        let text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
         write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
         println!("wrote {}", path.display());
     }

@@ -2,3 +2,4 @@
 //! next to the error it was bought with.
 
 pub mod fast;
+pub mod stochastic;

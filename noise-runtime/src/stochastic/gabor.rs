@@ -5,8 +5,8 @@
 //! samples one impulse per cell with probability `(2i + 1)/n_c²`.
 
 use super::estimators::sanitize_xi;
-use super::hash::{hash3, mix, unit};
-use crate::math::{cos_turns, exp_neg, split, sqrt_fast};
+use super::sparse::{cells, impulse};
+use crate::math::{cos_turns, exp_neg, sqrt_fast};
 
 /// Gabor noise parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,8 +49,8 @@ impl Gabor {
 
 /// Poisson-distributed count with mean `lambda` from the uniform `u` (inversion, at most 64).
 #[inline(always)]
-fn poisson(lambda: f32, u: f32) -> u32 {
-    let mut p = exp_neg(-lambda);
+fn poisson(lambda: f32, e_lambda: f32, u: f32) -> u32 {
+    let mut p = e_lambda;
     let mut cdf = p;
     let mut k = 0;
     while u > cdf && k < 64 {
@@ -61,58 +61,43 @@ fn poisson(lambda: f32, u: f32) -> u32 {
     k
 }
 
-/// Kernel value of impulse `i` of cell hash `h` at offset `d` from the cell origin.
+/// Kernel value and sign of impulse `i` of the cell with hash `h`, at offset `d` from the
+/// cell's corner.
 #[inline(always)]
 fn term(h: u32, i: u32, d: [f32; 3], f0: f32) -> (f32, f32) {
-    let a = mix(h ^ i.wrapping_mul(0x9e37_79b9));
-    let b = mix(a);
-    let c = mix(b);
-    let e = mix(c);
-    let g = mix(e);
-    let x = d[0] - unit(a);
-    let y = d[1] - unit(b);
-    let z = d[2] - unit(c);
+    let (q, sign) = impulse(h, i);
+    let (x, y, z) = (d[0] - q[0], d[1] - q[1], d[2] - q[2]);
     let r2 = x * x + y * y + z * z;
-    let sign = if g & 1 == 0 { 1.0 } else { -1.0 };
     if r2 >= 1.0 {
         return (0.0, sign);
     }
-    // Isotropic orientation: z uniform in [−1, 1], azimuth uniform.
-    let oz = 1.0 - 2.0 * unit(e);
+    // Isotropic orientation from a second draw: z uniform in [−1, 1], azimuth uniform.
+    let (o, _) = impulse(!h, i);
+    let oz = 1.0 - 2.0 * o[0];
     let rr = sqrt_fast(1.0 - oz * oz);
-    let phi = unit(g);
-    let (ox, oy) = (rr * cos_turns(phi), rr * cos_turns(phi - 0.25));
+    let (ox, oy) = (rr * cos_turns(o[1]), rr * cos_turns(o[1] - 0.25));
     let k = exp_neg(-PI_A2 * r2) * cos_turns(f0 * (ox * x + oy * y + oz * z));
     (k, sign)
 }
 
+/// Impulse count of a cell (Poisson with mean λ; `e_lambda = e^(−λ)`).
 #[inline(always)]
-fn cells(p: [f32; 3], seed: u32, mut each: impl FnMut(u32, [f32; 3])) {
-    let (cx, fx) = split(p[0]);
-    let (cy, fy) = split(p[1]);
-    let (cz, fz) = split(p[2]);
-    for dz in -1..=1 {
-        for dy in -1..=1 {
-            for dx in -1..=1 {
-                let h = hash3(
-                    cx.wrapping_add(dx),
-                    cy.wrapping_add(dy),
-                    cz.wrapping_add(dz),
-                    seed,
-                );
-                each(h, [fx - dx as f32, fy - dy as f32, fz - dz as f32]);
-            }
-        }
-    }
+fn count(h: u32, lambda: f32, e_lambda: f32) -> u32 {
+    poisson(
+        lambda,
+        e_lambda,
+        (h.wrapping_mul(0x2c1b_3c6d) >> 8) as i32 as f32 * (1.0 / 16_777_216.0),
+    )
 }
 
 /// 3D Gabor noise: `Σ_c Σ_i ±(i + ½)/n_c · K_i(p)`.
 #[inline]
 pub fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
     let (lambda, f0) = g.sane();
+    let e_lambda = exp_neg(-lambda);
     let mut sum = 0.0;
     cells(p, seed, |h, d| {
-        let n = poisson(lambda, unit(mix(h ^ 0x2545_f491)));
+        let n = count(h, lambda, e_lambda);
         let inv = 1.0 / n.max(1) as f32;
         for i in 0..n {
             let (k, s) = term(h, i, d, f0);
@@ -127,14 +112,15 @@ pub fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
 #[inline]
 pub fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
     let (lambda, f0) = g.sane();
+    let e_lambda = exp_neg(-lambda);
     let xi = sanitize_xi(xi);
     let mut sum = 0.0;
     cells(p, seed, |h, d| {
-        let n = poisson(lambda, unit(mix(h ^ 0x2545_f491)));
+        let n = count(h, lambda, e_lambda);
         if n == 0 {
             return;
         }
-        let mut x = xi + unit(mix(h ^ 0x51ed_270b));
+        let mut x = xi + (h >> 8) as i32 as f32 * (1.0 / 16_777_216.0);
         if x >= 1.0 {
             x -= 1.0;
         }

@@ -4,8 +4,8 @@
 //! corner with probability equal to its interpolation weight, and only that corner's gradient
 //! is evaluated.
 
-use super::estimators::{pick, sanitize_xi};
-use super::hash::{hash2, hash3, hash4};
+use super::estimators::{choose, sanitize_xi};
+use super::hash::{PRIME, corner, hash4};
 use crate::math::split;
 
 /// The quintic fade `6t⁵ − 15t⁴ + 10t³`.
@@ -94,7 +94,21 @@ fn g4(h: u32) -> [f32; 4] {
 /// 2D Perlin noise, about `[-1, 1]`.
 #[inline]
 pub fn perlin2(p: [f32; 2], seed: u32) -> f32 {
-    perlin2_grad(p, seed).0
+    let (ix, x) = split(p[0]);
+    let (iy, y) = split(p[1]);
+    let xp0 = (ix as u32).wrapping_mul(PRIME[0]);
+    let yp0 = (iy as u32).wrapping_mul(PRIME[1]);
+    let (xp1, yp1) = (xp0.wrapping_add(PRIME[0]), yp0.wrapping_add(PRIME[1]));
+    let c = |xp: u32, yp: u32, dx: f32, dy: f32| {
+        let g = g2(corner(seed, xp, yp, 0));
+        g[0] * dx + g[1] * dy
+    };
+    let (u, v) = (fade(x), fade(y));
+    lerp(
+        v,
+        lerp(u, c(xp0, yp0, x, y), c(xp1, yp0, x - 1.0, y)),
+        lerp(u, c(xp0, yp1, x, y - 1.0), c(xp1, yp1, x - 1.0, y - 1.0)),
+    )
 }
 
 /// 2D Perlin noise and its analytic gradient `(∂n/∂x, ∂n/∂y)`.
@@ -108,10 +122,11 @@ pub fn perlin2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
     let mut d = [0.0f32; 2];
     for c in 0..4u32 {
         let (cx, cy) = (c & 1, c >> 1);
-        let g = g2(hash2(
-            ix.wrapping_add(cx as i32),
-            iy.wrapping_add(cy as i32),
+        let g = g2(corner(
             seed,
+            (ix.wrapping_add(cx as i32) as u32).wrapping_mul(PRIME[0]),
+            (iy.wrapping_add(cy as i32) as u32).wrapping_mul(PRIME[1]),
+            0,
         ));
         let (ox, oy) = (x - cx as f32, y - cy as f32);
         let dot = g[0] * ox + g[1] * oy;
@@ -131,11 +146,15 @@ pub fn perlin2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
 pub fn perlin2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
     let (ix, x) = split(p[0]);
     let (iy, y) = split(p[1]);
-    let mut xi = sanitize_xi(xi);
-    let cx = pick(&mut xi, fade(x)) as i32;
-    let cy = pick(&mut xi, fade(y)) as i32;
-    let g = g2(hash2(ix.wrapping_add(cx), iy.wrapping_add(cy), seed));
-    g[0] * (x - cx as f32) + g[1] * (y - cy as f32)
+    let (bx, xi) = choose(sanitize_xi(xi), fade(x));
+    let (by, _) = choose(xi, fade(y));
+    let g = g2(corner(
+        seed,
+        (ix.wrapping_add(bx.int()) as u32).wrapping_mul(PRIME[0]),
+        (iy.wrapping_add(by.int()) as u32).wrapping_mul(PRIME[1]),
+        0,
+    ));
+    g[0] * (x - bx.float()) + g[1] * (y - by.float())
 }
 
 /// 3D Perlin noise (improved noise), about `[-1, 1]`.
@@ -146,11 +165,19 @@ pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
     let (iz, z) = split(p[2]);
     let (u, v, w) = (fade(x), fade(y), fade(z));
     let (x1, y1, z1) = (x - 1.0, y - 1.0, z - 1.0);
-    let (ix1, iy1, iz1) = (ix.wrapping_add(1), iy.wrapping_add(1), iz.wrapping_add(1));
-    let c = |i: i32, j: i32, k: i32, dx: f32, dy: f32, dz: f32| {
-        let g = g3(hash3(i, j, k, seed));
+    let xp0 = (ix as u32).wrapping_mul(PRIME[0]);
+    let yp0 = (iy as u32).wrapping_mul(PRIME[1]);
+    let zp0 = (iz as u32).wrapping_mul(PRIME[2]);
+    let (xp1, yp1, zp1) = (
+        xp0.wrapping_add(PRIME[0]),
+        yp0.wrapping_add(PRIME[1]),
+        zp0.wrapping_add(PRIME[2]),
+    );
+    let c = |xp: u32, yp: u32, zp: u32, dx: f32, dy: f32, dz: f32| {
+        let g = g3(corner(seed, xp, yp, zp));
         g[0] * dx + g[1] * dy + g[2] * dz
     };
+    let (ix, iy, iz, ix1, iy1, iz1) = (xp0, yp0, zp0, xp1, yp1, zp1);
     lerp(
         w,
         lerp(
@@ -179,11 +206,11 @@ pub fn perlin3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
     let mut d = [0.0f32; 3];
     for c in 0..8u32 {
         let b = [c & 1, (c >> 1) & 1, c >> 2];
-        let g = g3(hash3(
-            cell[0].wrapping_add(b[0] as i32),
-            cell[1].wrapping_add(b[1] as i32),
-            cell[2].wrapping_add(b[2] as i32),
+        let g = g3(corner(
             seed,
+            (cell[0].wrapping_add(b[0] as i32) as u32).wrapping_mul(PRIME[0]),
+            (cell[1].wrapping_add(b[1] as i32) as u32).wrapping_mul(PRIME[1]),
+            (cell[2].wrapping_add(b[2] as i32) as u32).wrapping_mul(PRIME[2]),
         ));
         let o = [f[0] - b[0] as f32, f[1] - b[1] as f32, f[2] - b[2] as f32];
         let dot = g[0] * o[0] + g[1] * o[1] + g[2] * o[2];
@@ -204,17 +231,17 @@ pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     let (ix, x) = split(p[0]);
     let (iy, y) = split(p[1]);
     let (iz, z) = split(p[2]);
-    let mut xi = sanitize_xi(xi);
-    let cx = pick(&mut xi, fade(x)) as i32;
-    let cy = pick(&mut xi, fade(y)) as i32;
-    let cz = pick(&mut xi, fade(z)) as i32;
-    let g = g3(hash3(
-        ix.wrapping_add(cx),
-        iy.wrapping_add(cy),
-        iz.wrapping_add(cz),
+    // Two remaps (the last decision needs none), each one division and no branch.
+    let (bx, xi) = choose(sanitize_xi(xi), fade(x));
+    let (by, xi) = choose(xi, fade(y));
+    let (bz, _) = choose(xi, fade(z));
+    let g = g3(corner(
         seed,
+        (ix.wrapping_add(bx.int()) as u32).wrapping_mul(PRIME[0]),
+        (iy.wrapping_add(by.int()) as u32).wrapping_mul(PRIME[1]),
+        (iz.wrapping_add(bz.int()) as u32).wrapping_mul(PRIME[2]),
     ));
-    g[0] * (x - cx as f32) + g[1] * (y - cy as f32) + g[2] * (z - cz as f32)
+    g[0] * (x - bx.float()) + g[1] * (y - by.float()) + g[2] * (z - bz.float())
 }
 
 /// 4D Perlin noise (e.g. 3D noise animated over time).
@@ -255,9 +282,10 @@ pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     let mut o = [0.0f32; 4];
     for a in 0..4 {
         let (c, f) = split(p[a]);
-        let b = pick(&mut xi, fade(f)) as i32;
-        cell[a] = c.wrapping_add(b);
-        o[a] = f - b as f32;
+        let (b, next) = choose(xi, fade(f));
+        xi = next;
+        cell[a] = c.wrapping_add(b.int());
+        o[a] = f - b.float();
     }
     let g = g4(hash4(cell[0], cell[1], cell[2], cell[3], seed));
     g[0] * o[0] + g[1] * o[1] + g[2] * o[2] + g[3] * o[3]

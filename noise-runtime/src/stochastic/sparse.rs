@@ -1,60 +1,85 @@
 //! Sparse convolution noise (Lewis 1989; Fajardo & Pharr §4): impulses at hashed positions in
-//! unit cells, convolved with a kernel of radius 1, so only the 27 cells around the point
+//! unit cells, convolved with the kernel `(1 − r²)³` of radius 1, so only the 27 cells around the point
 //! matter (eq. 7). Impulse `i` of `n` in a cell has the stratified weight `±(i + ½)/n`, which
 //! lets the estimator importance-sample one impulse per cell directly with `i = ⌊n √ξ⌋`
 //! (probability `(2i + 1)/n²`), giving eq. (8): `½ Σ_c ±k(|p − p_(i,c)|)`.
 
 use super::estimators::sanitize_xi;
 use super::fractal::{Fractal, fractal, fractal_stochastic};
-use super::hash::{hash3, mix, unit};
+use super::hash::{PRIME, corner};
 use crate::math::{split, sqrt_fast};
 
-/// Kernel `k(r) = 1 − fade(r)` for `r < 1` (a C² quintic falloff), 0 beyond.
+/// Kernel `k(r) = (1 − r²)³` for `r < 1`, 0 beyond: smooth (C¹ at the support edge, zero
+/// slope) and polynomial in `r²`, so no square root.
 #[inline(always)]
 fn kernel(r2: f32) -> f32 {
-    if r2 >= 1.0 {
-        return 0.0;
-    }
-    let r = sqrt_fast(r2);
-    1.0 - r * r * r * (r * (r * 6.0 - 15.0) + 10.0)
+    let t = 1.0 - r2;
+    if t > 0.0 { t * t * t } else { 0.0 }
 }
 
-/// Position in the cell and sign of impulse `i` of a cell with hash `h`.
+/// Position in the cell (21-bit coordinates) and sign of impulse `i` of the cell with hash `h`:
+/// one 64-bit multiply–xorshift–multiply of `(h, i)`, so any impulse is reached directly.
 #[inline(always)]
-fn impulse(h: u32, i: u32) -> ([f32; 3], f32) {
-    let a = mix(h ^ i.wrapping_mul(0x9e37_79b9));
-    let b = mix(a);
-    let c = mix(b);
+pub(crate) fn impulse(h: u32, i: u32) -> ([f32; 3], f32) {
+    let mut z = ((h as u64) << 32 | i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    z ^= z >> 29;
+    z = z.wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    const S: f32 = 1.0 / 2_097_152.0;
     (
-        [unit(a), unit(b), unit(c)],
-        if c & 1 == 0 { 1.0 } else { -1.0 },
+        [
+            (z >> 43) as i32 as f32 * S,
+            ((z >> 22) & 0x1f_ffff) as i32 as f32 * S,
+            ((z >> 1) & 0x1f_ffff) as i32 as f32 * S,
+        ],
+        if z & 1 == 0 { 1.0 } else { -1.0 },
     )
 }
 
 #[inline(always)]
-fn r2(f: [f32; 3], d: [i32; 3], q: [f32; 3]) -> f32 {
-    let x = f[0] - d[0] as f32 - q[0];
-    let y = f[1] - d[1] as f32 - q[1];
-    let z = f[2] - d[2] as f32 - q[2];
+fn r2(f: [f32; 3], q: [f32; 3]) -> f32 {
+    let x = f[0] - q[0];
+    let y = f[1] - q[1];
+    let z = f[2] - q[2];
     x * x + y * y + z * z
 }
 
+/// Calls `each(cell hash, offset of p from that cell's corner)` for the cells of the 3×3×3
+/// block that the kernel's unit ball around `p` reaches (about 21 of 27 on average).
 #[inline(always)]
-fn cells(p: [f32; 3], mut each: impl FnMut(u32, [f32; 3], [i32; 3])) {
-    let (cx, fx) = split(p[0]);
-    let (cy, fy) = split(p[1]);
-    let (cz, fz) = split(p[2]);
-    let f = [fx, fy, fz];
-    for dz in -1..=1 {
-        for dy in -1..=1 {
-            for dx in -1..=1 {
-                let h = hash3(
-                    cx.wrapping_add(dx),
-                    cy.wrapping_add(dy),
-                    cz.wrapping_add(dz),
-                    0,
+pub(crate) fn cells(p: [f32; 3], seed: u32, mut each: impl FnMut(u32, [f32; 3])) {
+    let mut hp = [[0u32; 3]; 3];
+    let mut f = [0.0f32; 3];
+    let mut slab = [[0.0f32; 3]; 3];
+    for a in 0..3 {
+        let (c, fa) = split(p[a]);
+        let base = (c as u32).wrapping_mul(PRIME[a]);
+        hp[a] = [
+            base.wrapping_sub(PRIME[a]),
+            base,
+            base.wrapping_add(PRIME[a]),
+        ];
+        f[a] = fa;
+        slab[a] = [fa * fa, 0.0, (1.0 - fa) * (1.0 - fa)];
+    }
+    for k in 0..3 {
+        for j in 0..3 {
+            let s_jk = slab[1][j] + slab[2][k];
+            if s_jk >= 1.0 {
+                continue;
+            }
+            for i in 0..3 {
+                if slab[0][i] + s_jk >= 1.0 {
+                    continue;
+                }
+                let h = corner(seed, hp[0][i], hp[1][j], hp[2][k]);
+                each(
+                    h,
+                    [
+                        f[0] + 1.0 - i as f32,
+                        f[1] + 1.0 - j as f32,
+                        f[2] + 1.0 - k as f32,
+                    ],
                 );
-                each(h, f, [dx, dy, dz]);
             }
         }
     }
@@ -67,11 +92,10 @@ pub fn sparse_conv3(p: [f32; 3], n: u32, seed: u32) -> f32 {
     let n = n.clamp(1, 64);
     let inv = 1.0 / n as f32;
     let mut sum = 0.0;
-    cells(p, |h, f, d| {
-        let h = h ^ seed;
+    cells(p, seed, |h, d| {
         for i in 0..n {
             let (q, s) = impulse(h, i);
-            let k = kernel(r2(f, d, q));
+            let k = kernel(r2(d, q));
             if k > 0.0 {
                 sum += s * (i as f32 + 0.5) * inv * k;
             }
@@ -87,16 +111,16 @@ pub fn sparse_conv3(p: [f32; 3], n: u32, seed: u32) -> f32 {
 pub fn sparse_conv3_stochastic(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
     let n = n.clamp(1, 64);
     let xi = sanitize_xi(xi);
+    let nf = n as f32;
     let mut sum = 0.0;
-    cells(p, |h, f, d| {
-        let h = h ^ seed;
-        let mut x = xi + unit(mix(h ^ 0x51ed_270b));
+    cells(p, seed, |h, d| {
+        let mut x = xi + (h >> 8) as i32 as f32 * (1.0 / 16_777_216.0);
         if x >= 1.0 {
             x -= 1.0;
         }
-        let i = ((n as f32 * sqrt_fast(x)) as u32).min(n - 1);
+        let i = ((nf * sqrt_fast(x)) as u32).min(n - 1);
         let (q, s) = impulse(h, i);
-        sum += s * kernel(r2(f, d, q));
+        sum += s * kernel(r2(d, q));
     });
     0.5 * sum
 }

@@ -1,0 +1,134 @@
+//! Stochastic noise against its deterministic twin and the best peer crates, single thread,
+//! random-order points (Fajardo & Pharr Table 1 on this CPU). The RMSE each stochastic variant
+//! pays is in `noisebake report stochastic` (same functions, same settings).
+//!
+//! `cargo bench -p build-assets --bench stochastic`
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use noise_runtime::stochastic::*;
+use std::hint::black_box;
+use std::time::Duration;
+
+const N: usize = 4096;
+
+fn points() -> (Vec<[f32; 3]>, Vec<f32>) {
+    let mut s = 0x1234_5678_9abc_def0u64;
+    let mut next = move || {
+        s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = s;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 40) as f32 / 16_777_216.0
+    };
+    let pts = (0..N)
+        .map(|_| {
+            [
+                next() * 100.0 - 50.0,
+                next() * 100.0 - 50.0,
+                next() * 100.0 - 50.0,
+            ]
+        })
+        .collect();
+    let xis = (0..N).map(|_| next()).collect();
+    (pts, xis)
+}
+
+macro_rules! bench {
+    ($g:expr, $name:expr, $pts:expr, $xis:expr, |$p:ident, $x:ident| $body:expr) => {
+        $g.bench_function($name, |b| {
+            b.iter(|| {
+                let mut acc = 0.0f32;
+                for (&$p, &$x) in $pts.iter().zip($xis.iter()) {
+                    let ($p, $x) = (black_box($p), black_box($x));
+                    acc += $body;
+                }
+                acc
+            })
+        });
+    };
+}
+
+fn noise(c: &mut Criterion) {
+    let (pts, xis) = points();
+    let f10 = Fractal::new(10, 2.0, 0.5);
+    let mut g = c.benchmark_group("noise3d");
+    g.throughput(Throughput::Elements(N as u64));
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500));
+    bench!(g, "perlin3/deterministic", pts, xis, |p, _x| perlin3(p, 1));
+    bench!(
+        g,
+        "perlin3/stochastic",
+        pts,
+        xis,
+        |p, x| perlin3_stochastic(p, 1, x)
+    );
+    bench!(g, "fbm3/deterministic", pts, xis, |p, _x| fbm3(p, f10, 1));
+    bench!(g, "fbm3/stochastic", pts, xis, |p, x| fbm3_stochastic(
+        p, f10, 1, x
+    ));
+    bench!(g, "sparse_conv3/deterministic", pts, xis, |p, _x| {
+        sparse_conv3(p, 10, 1)
+    });
+    bench!(g, "sparse_conv3/stochastic", pts, xis, |p, x| {
+        sparse_conv3_stochastic(p, 10, 1, x)
+    });
+    bench!(g, "gabor3/deterministic", pts, xis, |p, _x| gabor3(
+        p,
+        Gabor::default(),
+        1
+    ));
+    bench!(g, "gabor3/stochastic", pts, xis, |p, x| gabor3_stochastic(
+        p,
+        Gabor::default(),
+        1,
+        x
+    ));
+    bench!(g, "voronoi3/deterministic", pts, xis, |p, _x| {
+        smooth_voronoi3(p, 1)
+    });
+    bench!(g, "voronoi3/stochastic", pts, xis, |p, x| {
+        smooth_voronoi3_stochastic(p, 1, SMOOTH_VORONOI_Q, x)
+    });
+    bench!(g, "worley3/deterministic", pts, xis, |p, _x| worley3_f1(
+        p, 1
+    ));
+    {
+        use noise_functions::{CellDistance, Noise, Perlin};
+        let fbm = Perlin.fbm(10, 0.5, 2.0);
+        let cell = CellDistance::default();
+        bench!(g, "perlin3/noise-functions", pts, xis, |p, _x| Perlin
+            .sample3(p));
+        bench!(g, "fbm3/noise-functions", pts, xis, |p, _x| fbm.sample3(p));
+        bench!(g, "worley3/noise-functions", pts, xis, |p, _x| cell
+            .sample3(p));
+    }
+    {
+        use fastnoise_lite::{
+            CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType,
+        };
+        let mut perlin = FastNoiseLite::new();
+        perlin.set_noise_type(Some(NoiseType::Perlin));
+        perlin.set_frequency(Some(1.0));
+        let mut fbm = FastNoiseLite::new();
+        fbm.set_noise_type(Some(NoiseType::Perlin));
+        fbm.set_frequency(Some(1.0));
+        fbm.set_fractal_type(Some(FractalType::FBm));
+        fbm.set_fractal_octaves(Some(10));
+        let mut cell = FastNoiseLite::new();
+        cell.set_noise_type(Some(NoiseType::Cellular));
+        cell.set_frequency(Some(1.0));
+        cell.set_cellular_return_type(Some(CellularReturnType::Distance));
+        cell.set_cellular_distance_function(Some(CellularDistanceFunction::Euclidean));
+        bench!(g, "perlin3/fastnoise-lite", pts, xis, |p, _x| perlin
+            .get_noise_3d(p[0], p[1], p[2]));
+        bench!(g, "fbm3/fastnoise-lite", pts, xis, |p, _x| fbm
+            .get_noise_3d(p[0], p[1], p[2]));
+        bench!(g, "worley3/fastnoise-lite", pts, xis, |p, _x| cell
+            .get_noise_3d(p[0], p[1], p[2]));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, noise);
+criterion_main!(benches);

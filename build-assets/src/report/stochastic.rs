@@ -1,0 +1,330 @@
+//! Stochastic-noise report (Fajardo & Pharr, Table 1, measured on this CPU): ns per evaluation
+//! of every deterministic and stochastic 3D noise, single thread, random-order points; the
+//! stochastic speedup; and the error bought with it — RMSE of the stochastic estimate against
+//! the deterministic value when averaging 1, 4, 16 and 64 independent ξ, with ξ from white noise
+//! and from an STBN mask (one pixel per point, ξ along the mask's time axis), and the bias (mean
+//! error over all points at 64 samples).
+//!
+//! With the `peers` feature, `noise-functions` and `fastnoise-lite` run in the same process on
+//! the same points: 3D Perlin, fBm with 10 octaves, Worley F1.
+
+use crate::rng::SplitMix64;
+use crate::spec::{Format, Histogram, Kind, TextureSpec};
+use noise_runtime::stochastic::*;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::hint::black_box;
+use std::time::Instant;
+
+/// One row of the JSON report (DESIGN.md / issue contract).
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// `perlin3`, `fbm3`, …
+    pub noise: String,
+    /// `deterministic`, `stochastic`, or a peer crate's name.
+    pub variant: String,
+    /// Nanoseconds per evaluation, single thread, random-order points.
+    pub ns_per_eval: f64,
+    /// RMSE against the deterministic value averaging k = 1, 4, 16, 64 white-noise ξ
+    /// (stochastic rows only).
+    pub rmse: Option<BTreeMap<String, f64>>,
+    /// The same with ξ from an STBN mask.
+    pub rmse_stbn: Option<BTreeMap<String, f64>>,
+    /// Mean error at 64 samples (stochastic rows only).
+    pub bias: Option<f64>,
+    /// Deterministic time / this time (stochastic rows only).
+    pub speedup: Option<f64>,
+}
+
+/// Evaluations timed per function.
+const TIMED: usize = 1 << 16;
+/// Points whose error is measured (a 64×64 image, one STBN pixel per point).
+const SIDE: usize = 64;
+/// Sample counts of the error columns.
+pub const KS: [usize; 4] = [1, 4, 16, 64];
+
+type Det = Box<dyn Fn([f32; 3]) -> f32>;
+type Sto = Box<dyn Fn([f32; 3], f32) -> f32>;
+
+/// The functions of the report with the paper's settings.
+fn functions() -> Vec<(&'static str, Det, Option<Sto>)> {
+    let fbm = Fractal::new(10, 2.0, 0.5);
+    vec![
+        (
+            "perlin2",
+            Box::new(|p: [f32; 3]| perlin2([p[0], p[1]], 1)),
+            Some(Box::new(|p: [f32; 3], x| {
+                perlin2_stochastic([p[0], p[1]], 1, x)
+            })),
+        ),
+        (
+            "perlin3",
+            Box::new(|p| perlin3(p, 1)),
+            Some(Box::new(|p, x| perlin3_stochastic(p, 1, x))),
+        ),
+        (
+            "perlin4",
+            Box::new(|p: [f32; 3]| perlin4([p[0], p[1], p[2], p[0] + p[2]], 1)),
+            Some(Box::new(|p: [f32; 3], x| {
+                perlin4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x)
+            })),
+        ),
+        (
+            "simplex3",
+            Box::new(|p| simplex3(p, 1)),
+            Some(Box::new(|p, x| simplex3_stochastic(p, 1, x))),
+        ),
+        (
+            "fbm3",
+            Box::new(move |p| fbm3(p, fbm, 1)),
+            Some(Box::new(move |p, x| fbm3_stochastic(p, fbm, 1, x))),
+        ),
+        (
+            "sparse_conv3",
+            Box::new(|p| sparse_conv3(p, 10, 1)),
+            Some(Box::new(|p, x| sparse_conv3_stochastic(p, 10, 1, x))),
+        ),
+        (
+            "fbm_sparse_conv3",
+            Box::new(move |p| fbm_sparse_conv3(p, fbm, 10, 1)),
+            Some(Box::new(move |p, x| {
+                fbm_sparse_conv3_stochastic(p, fbm, 10, 1, x)
+            })),
+        ),
+        (
+            "gabor3",
+            Box::new(|p| gabor3(p, Gabor::default(), 1)),
+            Some(Box::new(|p, x| {
+                gabor3_stochastic(p, Gabor::default(), 1, x)
+            })),
+        ),
+        (
+            "voronoi3",
+            Box::new(|p| smooth_voronoi3(p, 1)),
+            Some(Box::new(|p, x| {
+                smooth_voronoi3_stochastic(p, 1, SMOOTH_VORONOI_Q, x)
+            })),
+        ),
+        ("worley3", Box::new(|p| worley3_f1(p, 1)), None),
+    ]
+}
+
+fn random_points(n: usize, seed: u64) -> Vec<[f32; 3]> {
+    let mut rng = SplitMix64::new(seed);
+    (0..n)
+        .map(|_| std::array::from_fn(|_| (rng.unit_f64() * 100.0 - 50.0) as f32))
+        .collect()
+}
+
+/// Nanoseconds per call of `f` over `pts` (best of 5 passes). Generic, so `f` is inlined into
+/// the loop as in a renderer's inner loop; 65 536 random points, so branch predictors cannot
+/// learn the sequence.
+fn time<F: Fn([f32; 3], f32) -> f32>(pts: &[[f32; 3]], xis: &[f32], f: F) -> f64 {
+    let mut best = f64::MAX;
+    for _ in 0..5 {
+        let start = Instant::now();
+        let mut acc = 0.0f32;
+        for (p, &x) in pts.iter().zip(xis) {
+            acc += f(black_box(*p), black_box(x));
+        }
+        black_box(acc);
+        best = best.min(start.elapsed().as_secs_f64() * 1e9 / pts.len() as f64);
+    }
+    best
+}
+
+/// ξ sources for the error columns: white noise, or the STBN mask's pixel sequence.
+fn rmse(
+    pts: &[[f32; 3]],
+    exact: &[f32],
+    sto: &dyn Fn([f32; 3], f32) -> f32,
+    xi: &dyn Fn(usize, usize) -> f32,
+) -> (BTreeMap<String, f64>, f64) {
+    let mut out = BTreeMap::new();
+    let mut bias = 0.0;
+    for &k in &KS {
+        let mut se = 0.0;
+        let mut me = 0.0;
+        for (i, p) in pts.iter().enumerate() {
+            let mean = (0..k).map(|j| sto(*p, xi(i, j)) as f64).sum::<f64>() / k as f64;
+            let e = mean - exact[i] as f64;
+            se += e * e;
+            me += e;
+        }
+        out.insert(k.to_string(), (se / pts.len() as f64).sqrt());
+        bias = me / pts.len() as f64;
+    }
+    (out, bias)
+}
+
+/// Peer rows (same points, same process).
+#[cfg(feature = "peers")]
+fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
+    use fastnoise_lite::{
+        CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType,
+    };
+    use noise_functions::{CellDistance, Noise, Perlin};
+    let row = |noise: &str, variant: &str, ns: f64| Row {
+        noise: noise.into(),
+        variant: variant.into(),
+        ns_per_eval: ns,
+        rmse: None,
+        rmse_stbn: None,
+        bias: None,
+        speedup: None,
+    };
+    let fnl = |t: NoiseType, fractal: bool| {
+        let mut n = FastNoiseLite::new();
+        n.set_noise_type(Some(t));
+        n.set_frequency(Some(1.0));
+        if fractal {
+            n.set_fractal_type(Some(FractalType::FBm));
+            n.set_fractal_octaves(Some(10));
+            n.set_fractal_lacunarity(Some(2.0));
+            n.set_fractal_gain(Some(0.5));
+        }
+        n.set_cellular_return_type(Some(CellularReturnType::Distance));
+        n.set_cellular_distance_function(Some(CellularDistanceFunction::Euclidean));
+        n
+    };
+    let (p1, p10, cell) = (
+        fnl(NoiseType::Perlin, false),
+        fnl(NoiseType::Perlin, true),
+        fnl(NoiseType::Cellular, false),
+    );
+    let nf_fbm = Perlin.fbm(10, 0.5, 2.0);
+    let nf_cell = CellDistance::default();
+    vec![
+        row(
+            "perlin3",
+            "noise-functions",
+            time(pts, xis, |p, _| Perlin.sample3(p)),
+        ),
+        row(
+            "perlin3",
+            "fastnoise-lite",
+            time(pts, xis, |p, _| p1.get_noise_3d(p[0], p[1], p[2])),
+        ),
+        row(
+            "fbm3",
+            "noise-functions",
+            time(pts, xis, |p, _| nf_fbm.sample3(p)),
+        ),
+        row(
+            "fbm3",
+            "fastnoise-lite",
+            time(pts, xis, |p, _| p10.get_noise_3d(p[0], p[1], p[2])),
+        ),
+        row(
+            "worley3",
+            "noise-functions",
+            time(pts, xis, |p, _| nf_cell.sample3(p)),
+        ),
+        row(
+            "worley3",
+            "fastnoise-lite",
+            time(pts, xis, |p, _| cell.get_noise_3d(p[0], p[1], p[2])),
+        ),
+    ]
+}
+
+#[cfg(not(feature = "peers"))]
+fn peers(_: &[[f32; 3]], _: &[f32]) -> Vec<Row> {
+    Vec::new()
+}
+
+/// Whether peer crates are compiled in.
+pub const HAS_PEERS: bool = cfg!(feature = "peers");
+
+/// Runs the report.
+pub fn run() -> Vec<Row> {
+    let pts = random_points(TIMED, 1);
+    let mut rng = SplitMix64::new(2);
+    let xis: Vec<f32> = (0..TIMED).map(|_| rng.unit_f64() as f32).collect();
+    // Error points: a 64×64 image of the plane z = 0.37 at 0.173 units per pixel.
+    let img: Vec<[f32; 3]> = (0..SIDE * SIDE)
+        .map(|i| [(i % SIDE) as f32 * 0.173, (i / SIDE) as f32 * 0.173, 0.37])
+        .collect();
+    let stbn = crate::generate(
+        &TextureSpec {
+            name: "XI".into(),
+            kind: Kind::Stbn {
+                sigma_xy: 1.9,
+                sigma_t: 1.9,
+                initial_density: 0.1,
+                histogram: Histogram::Slice,
+            },
+            dims: vec![SIDE, SIDE, 64],
+            seed: 3,
+            format: Format::F32,
+        },
+        &mut |_, _| {},
+    )
+    .values();
+    let white: Vec<f32> = {
+        let mut r = SplitMix64::new(4);
+        (0..SIDE * SIDE * 64).map(|_| r.unit_f64() as f32).collect()
+    };
+    // Timing, monomorphised per function (boxing would hide inlining and skew the ratios).
+    let fbm = Fractal::new(10, 2.0, 0.5);
+    let g = Gabor::default();
+    macro_rules! times {
+        ($($name:literal: |$p:ident, $x:ident| $det:expr, $sto:expr;)*) => {{
+            let mut t = BTreeMap::new();
+            $(
+                t.insert($name, (
+                    time(&pts, &xis, |$p, $x| { let _ = $x; $det }),
+                    time(&pts, &xis, |$p, $x| { let _ = $x; $sto }),
+                ));
+            )*
+            t
+        }};
+    }
+    let times = times! {
+        "perlin2": |p, x| perlin2([p[0], p[1]], 1), perlin2_stochastic([p[0], p[1]], 1, x);
+        "perlin3": |p, x| perlin3(p, 1), perlin3_stochastic(p, 1, x);
+        "perlin4": |p, x| perlin4([p[0], p[1], p[2], p[0] + p[2]], 1),
+            perlin4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x);
+        "simplex3": |p, x| simplex3(p, 1), simplex3_stochastic(p, 1, x);
+        "fbm3": |p, x| fbm3(p, fbm, 1), fbm3_stochastic(p, fbm, 1, x);
+        "sparse_conv3": |p, x| sparse_conv3(p, 10, 1), sparse_conv3_stochastic(p, 10, 1, x);
+        "fbm_sparse_conv3": |p, x| fbm_sparse_conv3(p, fbm, 10, 1),
+            fbm_sparse_conv3_stochastic(p, fbm, 10, 1, x);
+        "gabor3": |p, x| gabor3(p, g, 1), gabor3_stochastic(p, g, 1, x);
+        "voronoi3": |p, x| smooth_voronoi3(p, 1),
+            smooth_voronoi3_stochastic(p, 1, SMOOTH_VORONOI_Q, x);
+        "worley3": |p, x| worley3_f1(p, 1), worley3_f1(p, 1);
+    };
+    let mut rows = Vec::new();
+    for (name, det, sto) in functions() {
+        let (det_ns, sto_ns) = times[name];
+        rows.push(Row {
+            noise: name.into(),
+            variant: "deterministic".into(),
+            ns_per_eval: det_ns,
+            rmse: None,
+            rmse_stbn: None,
+            bias: None,
+            speedup: None,
+        });
+        if let Some(sto) = sto {
+            let ns = sto_ns;
+            let exact: Vec<f32> = img.iter().map(|&p| det(p)).collect();
+            let (w, bias) = rmse(&img, &exact, &*sto, &|i, j| white[j * SIDE * SIDE + i]);
+            let (b, _) = rmse(&img, &exact, &*sto, &|i, j| {
+                stbn[j * SIDE * SIDE + i] as f32
+            });
+            rows.push(Row {
+                noise: name.into(),
+                variant: "stochastic".into(),
+                ns_per_eval: ns,
+                rmse: Some(w),
+                rmse_stbn: Some(b),
+                bias: Some(bias),
+                speedup: Some(det_ns / ns),
+            });
+        }
+    }
+    rows.extend(peers(&pts, &xis));
+    rows
+}
