@@ -15,6 +15,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod cnj;
 pub mod coord;
 pub mod ldg;
 pub mod mask;

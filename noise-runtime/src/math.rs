@@ -189,3 +189,36 @@ pub fn sqrt_fast(x: f32) -> f32 {
     y *= 1.5 - h * y * y;
     x * y
 }
+
+/// `⌊v⌋` for finite `v` (NaN passes through; |v| ≥ 2^52 is already integral).
+#[inline]
+pub fn floor_f64(v: f64) -> f64 {
+    if v.is_nan() || v.abs() >= 4_503_599_627_370_496.0 {
+        return v;
+    }
+    let t = v as i64 as f64;
+    if t > v { t - 1.0 } else { t }
+}
+
+/// `⌈v⌉` for finite `v`.
+#[inline]
+pub fn ceil_f64(v: f64) -> f64 {
+    -floor_f64(-v)
+}
+
+/// `√x` in f64 (Newton from a bit-level guess; correctly rounded to within an ulp); `x ≤ 0` or
+/// NaN gives 0.
+#[inline]
+pub fn sqrt_f64(x: f64) -> f64 {
+    if x.is_nan() || x <= 0.0 {
+        return 0.0;
+    }
+    if x == f64::INFINITY {
+        return x;
+    }
+    let mut y = f64::from_bits((x.to_bits() >> 1) + (1023u64 << 51));
+    for _ in 0..6 {
+        y = 0.5 * (y + x / y);
+    }
+    y
+}

@@ -200,6 +200,12 @@ pub fn perlin3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
     for a in 0..3 {
         (cell[a], f[a]) = split(p[a]);
     }
+    perlin3_grad_cell(cell, f, seed)
+}
+
+/// [`perlin3_grad`] at offset `f ∈ [0, 1)³` in the integer lattice cell `cell`: exact for any
+/// `i32` cell, however far from the origin.
+pub fn perlin3_grad_cell(cell: [i32; 3], f: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
     let u = f.map(fade);
     let du = f.map(dfade);
     let mut n = 0.0;

@@ -1,0 +1,110 @@
+//! The curl-noise velocity fields that displace the lattice (CNJ eq. 4–5, §2.1).
+//!
+//! 2D: gradient noise `N` with quintic fade and analytic derivatives (gradients uniform in
+//! `[−1, 1]²`, as in the Perlin-noise-with-derivatives formulation the paper adapts), and
+//! `V(x) = (∂N(x/s)/∂y, −∂N(x/s)/∂x)` — the paper's sign (eq. 5). 3D: the curl of a vector
+//! potential made of three 3D gradient noises with different seeds.
+//!
+//! Positions arrive as `f64` and are split into an integer noise cell and an `f32` offset in
+//! `f64`, so the field is exact for any lattice site an `i32` can name; the arithmetic after the
+//! split is `f32`.
+
+use crate::stochastic::{hash2, perlin3_grad_cell};
+
+#[inline(always)]
+fn fade(t: f32) -> f32 {
+    t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+}
+
+#[inline(always)]
+fn dfade(t: f32) -> f32 {
+    let s = t * (t - 1.0);
+    30.0 * s * s
+}
+
+/// Splits `x` into cell and offset in `[0, 1)`, in `f64` (total for finite input).
+#[inline(always)]
+pub(crate) fn split64(x: f64) -> (i32, f32) {
+    let fl = if x.is_finite() {
+        let t = x as i64 as f64;
+        if t > x { t - 1.0 } else { t }
+    } else {
+        0.0
+    };
+    let f = (x - fl) as f32;
+    (
+        fl as i64 as i32,
+        if (0.0..1.0).contains(&f) { f } else { 0.0 },
+    )
+}
+
+#[inline(always)]
+fn grad2(ix: i32, iy: i32, seed: u32) -> [f32; 2] {
+    let h = hash2(ix, iy, seed);
+    const S: f32 = 1.0 / 32768.0;
+    [
+        (h >> 16) as i32 as f32 * S - 1.0,
+        (h & 0xffff) as i32 as f32 * S - 1.0,
+    ]
+}
+
+/// 2D gradient noise and its gradient `(n, ∂n/∂x, ∂n/∂y)` at `p` (noise units).
+#[inline]
+pub fn noise2(p: [f64; 2], seed: u32) -> (f32, f32, f32) {
+    let (ix, x) = split64(p[0]);
+    let (iy, y) = split64(p[1]);
+    let ga = grad2(ix, iy, seed);
+    let gb = grad2(ix.wrapping_add(1), iy, seed);
+    let gc = grad2(ix, iy.wrapping_add(1), seed);
+    let gd = grad2(ix.wrapping_add(1), iy.wrapping_add(1), seed);
+    let va = ga[0] * x + ga[1] * y;
+    let vb = gb[0] * (x - 1.0) + gb[1] * y;
+    let vc = gc[0] * x + gc[1] * (y - 1.0);
+    let vd = gd[0] * (x - 1.0) + gd[1] * (y - 1.0);
+    let (ux, uy) = (fade(x), fade(y));
+    let (dx, dy) = (dfade(x), dfade(y));
+    let k = va - vb - vc + vd;
+    let n = va + ux * (vb - va) + uy * (vc - va) + ux * uy * k;
+    let nx = ga[0]
+        + ux * (gb[0] - ga[0])
+        + uy * (gc[0] - ga[0])
+        + ux * uy * (ga[0] - gb[0] - gc[0] + gd[0])
+        + dx * (uy * k + (vb - va));
+    let ny = ga[1]
+        + ux * (gb[1] - ga[1])
+        + uy * (gc[1] - ga[1])
+        + ux * uy * (ga[1] - gb[1] - gc[1] + gd[1])
+        + dy * (ux * k + (vc - va));
+    (n, nx, ny)
+}
+
+/// The 2D curl-noise velocity at `p` (lattice units) for noise scale `s`:
+/// `V = (∂N(p/s)/∂y, −∂N(p/s)/∂x)` (eq. 5), derivatives taken w.r.t. `p` (hence the `1/s`).
+#[inline]
+pub fn velocity2(p: [f64; 2], s: f64, seed: u32) -> [f32; 2] {
+    let (_, nx, ny) = noise2([p[0] / s, p[1] / s], seed);
+    let inv = (1.0 / s) as f32;
+    [ny * inv, -nx * inv]
+}
+
+/// The 3D curl-noise velocity at `p`: `∇ × Φ(p/s)` with `Φ = (N₁, N₂, N₃)` three 3D gradient
+/// noises (improved Perlin noise with different seeds). Divergence-free by construction.
+#[inline]
+pub fn velocity3(p: [f64; 3], s: f64, seed: u32) -> [f32; 3] {
+    let mut cell = [0i32; 3];
+    let mut f = [0.0f32; 3];
+    for a in 0..3 {
+        (cell[a], f[a]) = split64(p[a] / s);
+    }
+    let q = |seed: u32| perlin3_grad_cell(cell, f, seed).1;
+    let g1 = q(seed);
+    let g2 = q(seed ^ 0x6a09_e667);
+    let g3 = q(seed ^ 0xbb67_ae85);
+    let inv = (1.0 / s) as f32;
+    // curl Φ = (∂Φz/∂y − ∂Φy/∂z, ∂Φx/∂z − ∂Φz/∂x, ∂Φy/∂x − ∂Φx/∂y)
+    [
+        (g3[1] - g2[2]) * inv,
+        (g1[2] - g3[0]) * inv,
+        (g2[0] - g1[1]) * inv,
+    ]
+}
