@@ -7,6 +7,7 @@
 pub mod baselines;
 pub mod fast;
 pub mod generate;
+pub mod points;
 pub mod rng;
 pub mod spec;
 pub mod texture;

@@ -10,6 +10,7 @@
 
 pub mod dft;
 pub mod filtered;
+pub mod points;
 
 use crate::texture::Texture;
 use serde::Serialize;
