@@ -1,0 +1,153 @@
+//! Images, convergence plots, `index.html` and the terminal summary.
+
+use crate::{AppResult, Config};
+use build_assets::export::plot::{PALETTE, Series, line_plot};
+use build_assets::export::write_atomic;
+use std::fmt::Write as _;
+use std::path::Path;
+
+fn png(path: &Path, img: &[f32], [w, h]: [usize; 2], c: usize) -> Result<(), String> {
+    let to8 = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    let mut bytes = Vec::new();
+    let enc = if c == 3 {
+        let buf: Vec<u8> = img.iter().map(|&v| to8(v)).collect();
+        image::RgbImage::from_raw(w as u32, h as u32, buf)
+            .ok_or("image size")?
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+    } else {
+        let buf: Vec<u8> = img.iter().map(|&v| to8(v)).collect();
+        image::GrayImage::from_raw(w as u32, h as u32, buf)
+            .ok_or("image size")?
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+    };
+    enc.map_err(|e| e.to_string())?;
+    write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Writes every image, the plots and `index.html` under `dir`.
+pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let mut html = String::from(
+        "<!doctype html><meta charset=utf-8><title>noisebake demo</title>\n<style>body{font-family:sans-serif;max-width:1400px;margin:auto}img{image-rendering:pixelated;width:192px}td,th{padding:2px 6px;text-align:center;font-size:13px}figure{display:inline-block;margin:4px}</style>\n<h1>noisebake demo</h1>\n<p>Every image is rendered on the CPU with one random number (or direction) per pixel and frame from the named noise; RMSE is against the converged reference. EMA: α = 0.1. Plots: RMSE (log scale) against frames, one line per noise in the order of the table.</p>\n",
+    );
+    let mc = cfg.mc_frames.min(cfg.frames);
+    for r in results {
+        let app = r.name;
+        png(
+            &dir.join(format!("{app}_reference.png")),
+            &r.reference,
+            cfg.size,
+            r.channels,
+        )?;
+        let _ = write!(
+            html,
+            "<h2>{app}</h2><p>{}</p><figure><img src=\"{app}_reference.png\"><figcaption>reference</figcaption></figure>\n<table><tr><th>noise</th><th>1 frame</th><th>{mc}-frame average</th><th>{}-frame EMA</th><th>RMSE 1 / filtered 1 / {mc} / EMA {} / EMA+blur</th><th>render s</th></tr>\n",
+            r.caption, cfg.frames, cfg.frames
+        );
+        for (m, imgs) in &r.runs {
+            let n = m.noise.name();
+            for (img, tag) in imgs.iter().zip(["1", "mc", "ema"]) {
+                png(
+                    &dir.join(format!("{app}_{n}_{tag}.png")),
+                    img,
+                    cfg.size,
+                    r.channels,
+                )?;
+            }
+            let _ = writeln!(
+                html,
+                "<tr><td>{n}</td><td><img src=\"{app}_{n}_1.png\"></td><td><img src=\"{app}_{n}_mc.png\"></td><td><img src=\"{app}_{n}_ema.png\"></td><td>{:.4} / {:.4} / {:.4} / {:.4} / {:.4}</td><td>{:.2}</td></tr>",
+                m.mc[0],
+                m.filtered_1,
+                m.mc[mc - 1],
+                m.ema[cfg.frames - 1],
+                m.denoised,
+                m.seconds
+            );
+        }
+        html += "</table>\n";
+        for (kind, pick) in [("mc", 0usize), ("ema", 1)] {
+            let series: Vec<Series> = r
+                .runs
+                .iter()
+                .enumerate()
+                .map(|(i, (m, _))| Series {
+                    label: m.noise.name().into(),
+                    color: PALETTE[i % PALETTE.len()],
+                    points: (if pick == 0 { &m.mc } else { &m.ema })
+                        .iter()
+                        .enumerate()
+                        .map(|(f, &e)| ((f + 1) as f64, e))
+                        .collect(),
+                })
+                .collect();
+            let file = format!("{app}_{kind}_convergence.png");
+            let range = line_plot(&dir.join(&file), &series, true)?;
+            let legend: Vec<String> = series
+                .iter()
+                .map(|s| {
+                    format!(
+                        "<span style=\"color:rgb({},{},{})\">■ {}</span>",
+                        s.color[0], s.color[1], s.color[2], s.label
+                    )
+                })
+                .collect();
+            let _ = writeln!(
+                html,
+                "<figure><img style=\"width:480px\" src=\"{file}\"><figcaption>{} RMSE vs frames {:.0}–{:.0}; log10 RMSE {:.2} … {:.2}<br>{}</figcaption></figure>",
+                if pick == 0 {
+                    "Monte Carlo average:"
+                } else {
+                    "EMA:"
+                },
+                range[0],
+                range[1],
+                range[2],
+                range[3],
+                legend.join(" ")
+            );
+        }
+    }
+    write_atomic(&dir.join("index.html"), html.as_bytes()).map_err(|e| format!("index.html: {e}"))
+}
+
+/// Prints the per-application, per-noise table.
+pub fn summary(results: &[AppResult], cfg: &Config) {
+    let mc = cfg.mc_frames.min(cfg.frames);
+    println!(
+        "\n{:<13} {:<14} {:>9} {:>10} {:>9} {:>9} {:>10} {:>9}",
+        "application",
+        "noise",
+        "rmse@1",
+        "filtered@1",
+        format!("mc@{mc}"),
+        format!("ema@{}", cfg.frames),
+        "ema+blur",
+        "render s"
+    );
+    for r in results {
+        for (m, _) in &r.runs {
+            println!(
+                "{:<13} {:<14} {:>9.4} {:>10.4} {:>9.4} {:>9.4} {:>10.4} {:>9.2}",
+                r.name,
+                m.noise.name(),
+                m.mc[0],
+                m.filtered_1,
+                m.mc[mc - 1],
+                m.ema[cfg.frames - 1],
+                m.denoised,
+                m.seconds
+            );
+        }
+        println!(
+            "{:<13} {:<14} reference rendered in {:.2} s",
+            r.name, "", r.reference_seconds
+        );
+    }
+}
