@@ -57,11 +57,12 @@ fn lattice_points(n: usize, seed: u64, jitter: impl Fn([i32; 2]) -> [f64; 2]) ->
     let d = tri_spacing(n);
     let mut rng = SplitMix64::new(derive_seed(seed, 0x0ff5e7));
     let off = [rng.unit_f64(), rng.unit_f64()];
-    let rows = (1.0 / (d * 0.866_025_403_784_438_6)).ceil() as i32 + 4;
-    let cols = (1.0 / d).ceil() as i32 + 4;
+    // Displacements stay below 1.2 spacings, so two sites of margin on each side suffice.
+    let rows = (1.0 / (d * 0.866_025_403_784_438_6)).ceil() as i32 + 2;
+    let cols = (1.0 / d).ceil() as i32 + 2;
     let mut out = Vec::with_capacity(n + n / 8);
-    for j in -3..rows {
-        for i in -3..cols {
+    for j in -2..rows {
+        for i in -2..cols {
             let base = Cnj2::site_position([i, j]);
             let jt = jitter([i, j]);
             let x = (base[0] + off[0] + jt[0]) * d;

@@ -46,7 +46,7 @@ fn closest_and_k_nearest_2d_match_brute_force() {
             }
         }
         let mut rng = Rng(seed as u64 + 1);
-        for _ in 0..20_000 {
+        for _ in 0..8_000 {
             let x = [rng.unit() * 20.0 - 10.0, rng.unit() * 16.0 - 8.0];
             let mut d: Vec<(f64, [i32; 2])> = pts
                 .iter()

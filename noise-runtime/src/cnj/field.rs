@@ -9,7 +9,7 @@
 //! `f64`, so the field is exact for any lattice site an `i32` can name; the arithmetic after the
 //! split is `f32`.
 
-use crate::stochastic::{hash2, perlin3_grad_cell};
+use crate::stochastic::perlin3_grad_cell;
 
 #[inline(always)]
 fn fade(t: f32) -> f32 {
@@ -40,7 +40,11 @@ pub(crate) fn split64(x: f64) -> (i32, f32) {
 
 #[inline(always)]
 fn grad2(ix: i32, iy: i32, seed: u32) -> [f32; 2] {
-    let h = hash2(ix, iy, seed);
+    // Two multiplies: the lattice-corner hash, then one xorshift–multiply round so the low
+    // half (the y component) is as well mixed as the high half.
+    let h = (seed ^ (ix as u32).wrapping_mul(0x8da6_b343) ^ (iy as u32).wrapping_mul(0xd816_3841))
+        .wrapping_mul(0x27d4_eb2d);
+    let h = (h ^ (h >> 15)).wrapping_mul(0x2c1b_3c6d);
     const S: f32 = 1.0 / 32768.0;
     [
         (h >> 16) as i32 as f32 * S - 1.0,
@@ -87,7 +91,8 @@ pub const NOISE_GAIN: f64 = 1.4375;
 /// `V = (∂N(p/s)/∂y, −∂N(p/s)/∂x)` (eq. 5), derivatives taken w.r.t. `p` (hence the `1/s`).
 #[inline]
 pub fn velocity2(p: [f64; 2], s: f64, seed: u32) -> [f32; 2] {
-    let (_, nx, ny) = noise2([p[0] / s, p[1] / s], seed);
+    let inv_s = 1.0 / s;
+    let (_, nx, ny) = noise2([p[0] * inv_s, p[1] * inv_s], seed);
     let inv = (NOISE_GAIN / s) as f32;
     [ny * inv, -nx * inv]
 }

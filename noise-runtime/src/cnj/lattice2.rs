@@ -114,6 +114,40 @@ fn for_ring_sites(center: [i32; 2], rings: i32, mut f: impl FnMut([i32; 2])) {
     }
 }
 
+/// `(Δi, Δj)` of the sites within `rings` hex rings of a site in an even (`odd = false`) or
+/// odd row, in scan order: the same set [`for_ring_sites`] visits.
+const fn ring_offsets<const N: usize>(rings: i32, odd: bool) -> [(i32, i32); N] {
+    let mut out = [(0i32, 0i32); N];
+    let mut n = 0;
+    let x0: i64 = if odd { 1 } else { 0 };
+    let mut dj = -rings;
+    while dj <= rings {
+        let half = 2 * rings as i64 - (if dj < 0 { -dj } else { dj }) as i64;
+        let par: i64 = if odd {
+            ((1 + dj) & 1) as i64
+        } else {
+            (dj & 1) as i64
+        };
+        let lo_num = x0 - half - par;
+        let lo = lo_num.div_euclid(2) + if lo_num.rem_euclid(2) != 0 { 1 } else { 0 };
+        let hi = (x0 + half - par).div_euclid(2);
+        let mut ii = lo;
+        while ii <= hi {
+            out[n] = (ii as i32, dj);
+            n += 1;
+            ii += 1;
+        }
+        dj += 1;
+    }
+    assert!(n == N);
+    out
+}
+
+/// Two hex rings (19 sites) around a site in an even / odd row.
+const RING2: [[(i32, i32); 19]; 2] = [ring_offsets::<19>(2, false), ring_offsets::<19>(2, true)];
+/// Three hex rings (37 sites).
+const RING3: [[(i32, i32); 37]; 2] = [ring_offsets::<37>(3, false), ring_offsets::<37>(3, true)];
+
 impl Cnj2 {
     /// The paper's Perlin-noise parameters (Table 1): `t = 1.05862`, `s = 2.86207`, one RK4 step.
     pub const PAPER: Cnj2 = Cnj2 {
@@ -294,12 +328,7 @@ impl Cnj2 {
             return None;
         }
         self.fill_rows(origin, dims, 0, &mut buf[..n]);
-        Some(Region2 {
-            cnj: *self,
-            origin,
-            dims,
-            points: &buf[..n],
-        })
+        Some(Region2::from_parts(*self, origin, dims, &buf[..n]))
     }
 
     /// Fills rows `row0..` of a region cache (for splitting the work across threads):
@@ -328,6 +357,11 @@ pub struct Region2<'a> {
     origin: [i32; 2],
     dims: [usize; 2],
     points: &'a [[f32; 2]],
+    /// Index deltas in `points` of the two-ring table, per parity of the centre row.
+    delta2: [[i32; 19]; 2],
+    /// Same for three rings.
+    delta3: [[i32; 37]; 2],
+    inv_spacing: f32,
 }
 
 impl<'a> Region2<'a> {
@@ -338,11 +372,16 @@ impl<'a> Region2<'a> {
         dims: [usize; 2],
         points: &'a [[f32; 2]],
     ) -> Self {
+        let w = dims[0].min(1 << 20) as i32;
+        let delta = |t: &[(i32, i32)], n: usize| t[n].1 * w + t[n].0;
         Region2 {
             cnj,
             origin,
             dims,
             points,
+            delta2: core::array::from_fn(|p| core::array::from_fn(|n| delta(&RING2[p], n))),
+            delta3: core::array::from_fn(|p| core::array::from_fn(|n| delta(&RING3[p], n))),
+            inv_spacing: 1.0 / cnj.sane().3 as f32,
         }
     }
 
@@ -357,34 +396,93 @@ impl<'a> Region2<'a> {
         }
     }
 
-    /// [`Cnj2::k_nearest`] from the cache.
+    /// [`Cnj2::k_nearest`] from the cache: the nearest site from the two rows bracketing the
+    /// query (the covering radius 0.58 is below the row spacing 0.87), then a fixed table of
+    /// hex-ring offsets read straight from the cache — no noise evaluation, no `f64`.
     pub fn k_nearest<const K: usize>(&self, x: [f32; 2]) -> [Neighbor2; K] {
         const { assert!(K >= 1 && K <= 4, "k_nearest supports K = 1..=4") };
-        let sp = self.cnj.sane().3 as f32;
-        let q = [(x[0] / sp) as f64, (x[1] / sp) as f64];
-        let center = Cnj2::nearest_site(q);
-        let rings = if K == 1 { 2 } else { 3 };
-        let mut best = [Neighbor2::NONE; K];
-        let mut d2 = [f32::MAX; K];
-        for_ring_sites(center, rings, |site| {
-            let p = self.point(site);
-            let dd = (p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]);
-            if dd < d2[K - 1] {
-                let mut k = K - 1;
-                while k > 0 && d2[k - 1] > dd {
-                    d2[k] = d2[k - 1];
-                    best[k] = best[k - 1];
-                    k -= 1;
-                }
-                d2[k] = dd;
-                best[k] = Neighbor2 {
-                    point: p,
-                    distance: crate::math::sqrt_fast(dd),
-                    site,
-                };
+        let (qx, qy) = (x[0] * self.inv_spacing, x[1] * self.inv_spacing);
+        const ROW32: f32 = ROW as f32;
+        let jf = crate::math::split(qy / ROW32).0;
+        let mut center = [0i32; 2];
+        let mut bd = f32::MAX;
+        for j in [jf, jf.wrapping_add(1)] {
+            let par = (j & 1) as f32 * 0.5;
+            let (i, f) = crate::math::split(qx - par + 0.5);
+            let _ = f;
+            let dx = qx - (i as f32 + par);
+            let dy = qy - j as f32 * ROW32;
+            let d = dx * dx + dy * dy;
+            if d < bd {
+                bd = d;
+                center = [i, j];
             }
-        });
-        best
+        }
+        let c = center[0].wrapping_sub(self.origin[0]);
+        let r = center[1].wrapping_sub(self.origin[1]);
+        let odd = (center[1] & 1) as usize;
+        let table: &[(i32, i32)] = if K == 1 { &RING2[odd] } else { &RING3[odd] };
+        let deltas: &[i32] = if K == 1 {
+            &self.delta2[odd]
+        } else {
+            &self.delta3[odd]
+        };
+        let m = 3;
+        let inside = c >= m
+            && r >= m
+            && (c as usize) + (m as usize) < self.dims[0]
+            && (r as usize) + (m as usize) < self.dims[1];
+        // Track (distance², table index) only; build the results at the end.
+        let mut d2 = [f32::MAX; K];
+        let mut at = [0usize; K];
+        let w = self.dims[0] as i32;
+        let base = r * w + c;
+        let fetch = |n: usize| {
+            if inside {
+                self.points[(base + deltas[n]) as usize]
+            } else {
+                let (di, dj) = table[n];
+                self.point([center[0].wrapping_add(di), center[1].wrapping_add(dj)])
+            }
+        };
+        if inside && K == 1 {
+            // The hot path of image shading: a branch-free minimum over the cached points.
+            // Non-negative floats order like their bit patterns, so the key (distance² bits,
+            // index) is minimised with an integer min.
+            let mut key = u64::MAX;
+            for (n, &dl) in deltas.iter().enumerate() {
+                let p = self.points[(base + dl) as usize];
+                let (dx, dy) = (p[0] - x[0], p[1] - x[1]);
+                key = key.min((((dx * dx + dy * dy).to_bits() as u64) << 8) | n as u64);
+            }
+            d2[0] = f32::from_bits((key >> 8) as u32);
+            at[0] = (key & 0xff) as usize;
+        } else {
+            for n in 0..table.len() {
+                let p = fetch(n);
+                let dd = (p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]);
+                if dd < d2[K - 1] {
+                    let mut k = K - 1;
+                    while k > 0 && d2[k - 1] > dd {
+                        d2[k] = d2[k - 1];
+                        at[k] = at[k - 1];
+                        k -= 1;
+                    }
+                    d2[k] = dd;
+                    at[k] = n;
+                }
+            }
+        }
+        let mut out = [Neighbor2::NONE; K];
+        for k in 0..K {
+            let (di, dj) = table[at[k]];
+            out[k] = Neighbor2 {
+                point: fetch(at[k]),
+                distance: crate::math::sqrt_fast(d2[k]),
+                site: [center[0].wrapping_add(di), center[1].wrapping_add(dj)],
+            };
+        }
+        out
     }
 
     /// [`Cnj2::closest`] from the cache.
