@@ -10,14 +10,19 @@ use std::hint::black_box;
 use std::time::Duration;
 
 fn lookups(c: &mut Criterion) {
-    let bytes: &'static [u8] =
-        Box::leak((0..128 * 128 * 64 * 2).map(|i| (i * 7 % 251) as u8).collect::<Vec<u8>>().into_boxed_slice());
+    let bytes: &'static [u8] = Box::leak(
+        (0..128 * 128 * 64 * 2)
+            .map(|i| (i * 7 % 251) as u8)
+            .collect::<Vec<u8>>()
+            .into_boxed_slice(),
+    );
     let mask: Mask3<u16, 128, 128, 64> = Mask3::new(bytes);
     let coords: Vec<(i32, i32, i32)> = (0..4096)
         .map(|i: i32| ((i * 37) % 300 - 100, (i * 91) % 260 - 70, (i * 13) % 200))
         .collect();
     let mut g = c.benchmark_group("runtime");
-    g.measurement_time(Duration::from_secs(2)).warm_up_time(Duration::from_millis(500));
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500));
     g.throughput(Throughput::Elements(coords.len() as u64));
     g.bench_function("hand indexing u16 128x128x64", |b| {
         b.iter(|| {
@@ -31,19 +36,45 @@ fn lookups(c: &mut Criterion) {
         })
     });
     g.bench_function("Mask3::get u16 128x128x64", |b| {
-        b.iter(|| coords.iter().map(|&(x, y, t)| mask.get(x, y, t) as u32).sum::<u32>())
+        b.iter(|| {
+            coords
+                .iter()
+                .map(|&(x, y, t)| mask.get(x, y, t) as u32)
+                .sum::<u32>()
+        })
     });
     g.bench_function("Mask3::get_k (k = 5) u16 128x128x64", |b| {
-        b.iter(|| coords.iter().map(|&(x, y, t)| mask.get_k(x, y, t, black_box(5)) as u32).sum::<u32>())
+        b.iter(|| {
+            coords
+                .iter()
+                .map(|&(x, y, t)| mask.get_k(x, y, t, black_box(5)) as u32)
+                .sum::<u32>()
+        })
     });
-    g.bench_function("ldg::r2", |b| b.iter(|| coords.iter().map(|&(x, y, _)| ldg::r2(x, y)).sum::<f32>()));
-    g.bench_function("ldg::plus", |b| b.iter(|| coords.iter().map(|&(x, y, _)| ldg::plus(x, y)).sum::<f32>()));
-    g.bench_function("ldg::ign", |b| b.iter(|| coords.iter().map(|&(x, y, _)| ldg::ign(x, y)).sum::<f32>()));
+    g.bench_function("ldg::r2", |b| {
+        b.iter(|| coords.iter().map(|&(x, y, _)| ldg::r2(x, y)).sum::<f32>())
+    });
+    g.bench_function("ldg::plus", |b| {
+        b.iter(|| coords.iter().map(|&(x, y, _)| ldg::plus(x, y)).sum::<f32>())
+    });
+    g.bench_function("ldg::ign", |b| {
+        b.iter(|| coords.iter().map(|&(x, y, _)| ldg::ign(x, y)).sum::<f32>())
+    });
     g.bench_function("ldg::bayer::<8>", |b| {
-        b.iter(|| coords.iter().map(|&(x, y, _)| ldg::bayer::<8>(x, y)).sum::<f32>())
+        b.iter(|| {
+            coords
+                .iter()
+                .map(|&(x, y, _)| ldg::bayer::<8>(x, y))
+                .sum::<f32>()
+        })
     });
     g.bench_function("ldg::r2_frame", |b| {
-        b.iter(|| coords.iter().map(|&(x, y, t)| ldg::r2_frame(x, y, t as u32)).sum::<f32>())
+        b.iter(|| {
+            coords
+                .iter()
+                .map(|&(x, y, t)| ldg::r2_frame(x, y, t as u32))
+                .sum::<f32>()
+        })
     });
     g.finish();
 }

@@ -228,7 +228,12 @@ fn expand(input: Input) -> TokenStream {
                 .span
                 .and_then(|s| spans.get(s.start).copied())
                 .unwrap_or(name.span());
-            return syn::Error::new(at, e.message).to_compile_error();
+            let err = syn::Error::new(at, e.message).to_compile_error();
+            // A typed placeholder so code using the texture does not add errors of its own.
+            let ph: TokenStream = fallback_placeholder(&table, &name.to_string(), &vis_s)
+                .parse()
+                .unwrap_or_default();
+            return quote!(#err #ph);
         }
     };
     let mut cache = cache();
@@ -259,4 +264,43 @@ fn expand(input: Input) -> TokenStream {
         syn::Error::new(name.span(), format!("noisebake generated bad code: {e}"))
             .to_compile_error()
     })
+}
+
+/// The placeholder item of an invalid spec: the view type the spec most likely meant (its `dims`
+/// and `format` when those parse, else a 1×1 u8 mask), zero bytes, `dead_code` allowed.
+fn fallback_placeholder(table: &spec::Table, name: &str, vis: &str) -> String {
+    let dims = table
+        .iter()
+        .find(|(k, _)| k.value == "dims")
+        .and_then(|(_, v)| match &v.value {
+            Value::Array(items) if (1..=4).contains(&items.len()) => items
+                .iter()
+                .map(|x| match x.value {
+                    Value::Int(i) if (1..=1 << 20).contains(&i) => Some(i as usize),
+                    _ => None,
+                })
+                .collect::<Option<Vec<usize>>>(),
+            _ => None,
+        })
+        .filter(|d| d.iter().product::<usize>() <= 1 << 20)
+        .unwrap_or_else(|| vec![1, 1]);
+    let format = table
+        .iter()
+        .find(|(k, _)| k.value == "format")
+        .and_then(|(_, v)| match &v.value {
+            Value::Str(f) => spec::Format::parse(f),
+            _ => None,
+        })
+        .unwrap_or(spec::Format::U8);
+    let s = build_assets::TextureSpec {
+        name: name.to_string(),
+        kind: spec::Kind::White,
+        dims,
+        seed: 0,
+        format,
+    };
+    format!(
+        "#[allow(dead_code)] {}",
+        codegen::placeholder(&s, vis, "::noisebake")
+    )
 }

@@ -135,13 +135,35 @@ pub fn generate(
     seed: u64,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Outcome {
+    generate_within(params, dims, seed, None, progress)
+}
+
+/// [`generate`] with an optional wall-clock budget in seconds (for timing reports; the result
+/// then depends on the machine, so baking never uses it).
+pub fn generate_within(
+    params: &FastParams,
+    dims: &[usize],
+    seed: u64,
+    budget: Option<f64>,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Outcome {
     let samples = initial_samples(params, dims, seed);
     let fp = params.footprint(dims);
     let d = dims3(dims);
     let rounds = params.iterations.unwrap_or(MAX_ROUNDS);
     with_metric!(
         params.sample_space,
-        run_optimize(d, &fp, samples, seed, rounds, progress)
+        run_optimize(
+            d,
+            &fp,
+            samples,
+            seed,
+            optimize::Limits {
+                max_rounds: rounds,
+                budget
+            },
+            progress
+        )
     )
 }
 
@@ -150,14 +172,14 @@ fn run_optimize<const C: usize, D>(
     fp: &Footprint,
     samples: Vec<f64>,
     seed: u64,
-    rounds: u32,
+    limits: optimize::Limits,
     progress: &mut dyn FnMut(u64, u64),
     dist: D,
 ) -> Outcome
 where
     D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
 {
-    optimize::optimize::<C, D>(d, fp, samples, dist, seed, rounds, progress)
+    optimize::optimize::<C, D>(d, fp, samples, dist, seed, limits, progress)
 }
 
 /// Encodes samples for storage. Uniform scalars are the ranks of their slice (so unorm formats

@@ -24,6 +24,15 @@ const TILE: usize = 16;
 /// Half-width of the window near partners are drawn from.
 const LOCAL: u64 = 2;
 
+/// When to stop besides convergence.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limits {
+    /// Most rounds.
+    pub max_rounds: u32,
+    /// Wall-clock budget in seconds (reports only: it makes the result machine-dependent).
+    pub budget: Option<f64>,
+}
+
 /// One point of the loss-against-time curve.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CurvePoint {
@@ -244,19 +253,21 @@ fn to_state<const C: usize>(samples: &[f64]) -> State<C> {
 
 /// Runs the optimiser. `samples` holds `C` values per texel, each slice already stratified;
 /// swaps stay within a slice, so every slice keeps its values. `max_rounds` caps the rounds;
-/// `progress(round, max_rounds)` is called after each.
+/// `budget` (seconds, for reports only — baking never sets it) stops after the round that
+/// exceeds it; `progress(round, max_rounds)` is called after each.
 pub fn optimize<const C: usize, D>(
     dims: [usize; 3],
     fp: &Footprint,
     samples: Vec<f64>,
     dist: D,
     seed: u64,
-    max_rounds: u32,
+    limits: Limits,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Outcome
 where
     D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
 {
+    let Limits { max_rounds, budget } = limits;
     let start = Instant::now();
     let [w, h, n] = dims;
     let state = to_state::<C>(&samples);
@@ -352,6 +363,10 @@ where
         });
         progress(round as u64 + 1, max_rounds as u64);
         if round_gain <= CONVERGED * total_gain {
+            break;
+        }
+        // A wall-clock budget (reports only: it makes the result depend on the machine).
+        if budget.is_some_and(|b| start.elapsed().as_secs_f64() >= b) {
             break;
         }
     }
