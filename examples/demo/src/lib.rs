@@ -10,6 +10,8 @@
 //! Run it with `cargo run --release --example demo` from the workspace root.
 
 pub mod apps;
+pub mod cloud;
+pub mod cnj_panel;
 pub mod noises;
 mod output;
 
@@ -231,6 +233,30 @@ pub fn main() {
     match run(&cfg) {
         Ok(results) => {
             output::summary(&results, &cfg);
+            let dir = cfg.out.clone().unwrap_or_default();
+            println!("\ncurl-noise jittering (implicit blue-noise points):");
+            let cnj = cnj_panel::run(&dir, 256).unwrap_or_else(|e| {
+                eprintln!("error: {e}");
+                std::process::exit(1)
+            });
+            for r in &cnj {
+                match r.quality {
+                    Some((nu, a, q)) => println!(
+                        "  {:<58} {:>8.2} ms  ν_eff {nu:.3}  ā {a:.1}  q {q:.5}",
+                        r.what,
+                        r.seconds * 1e3
+                    ),
+                    None => println!("  {:<58} {:>8.2} ms", r.what, r.seconds * 1e3),
+                }
+            }
+            println!(
+                "\nstochastic noise: fBm cloud, deterministic vs one-sample fBm density (1 thread):"
+            );
+            let cloud = cloud::run(&dir);
+            output::extra_panels(&dir, &cnj, &cloud).unwrap_or_else(|e| {
+                eprintln!("error: {e}");
+                std::process::exit(1)
+            });
             println!(
                 "\nrender time {:.1} s; images, plots and index.html in {}",
                 start.elapsed().as_secs_f64(),

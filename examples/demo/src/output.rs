@@ -151,3 +151,42 @@ pub fn summary(results: &[AppResult], cfg: &Config) {
         );
     }
 }
+
+/// Appends the CNJ and stochastic-noise panels to `index.html`.
+pub fn extra_panels(
+    dir: &Path,
+    cnj: &[crate::cnj_panel::Row],
+    cloud: &[(String, f64, f64)],
+) -> Result<(), String> {
+    let path = dir.join("index.html");
+    let mut html = std::fs::read_to_string(&path).map_err(|e| format!("index.html: {e}"))?;
+    html += "<h2>curl-noise jittering</h2><p>Implicit blue-noise points (Bærentzen et al. 2023): every lattice site is displaced along a curl-noise field; cells are shaded from a region cache of jittered sites. Left to right: Worley F1, cell borders F2 − F1, the foam SDF of eq. (12), cell colours; then 1000-point sets with their point-set quality.</p>\n";
+    for f in ["cnj_f1", "cnj_f2_minus_f1", "cnj_foam", "cnj_cells"] {
+        let _ = write!(
+            html,
+            "<figure><img src=\"{f}.png\" style=\"width:256px\"><figcaption>{f}</figcaption></figure>"
+        );
+    }
+    html += "<br>";
+    for r in cnj {
+        if let Some((nu, a, q)) = r.quality {
+            let _ = write!(
+                html,
+                "<figure><img src=\"{}.png\" style=\"width:256px\"><figcaption>{}: ν_eff {nu:.3}, ā {a:.1}, q {q:.5}, {:.2} ms</figcaption></figure>",
+                r.what,
+                r.what,
+                r.seconds * 1e3
+            );
+        } else {
+            let _ = write!(html, "<p>{}: {:.1} ms</p>", r.what, r.seconds * 1e3);
+        }
+    }
+    html += "<h2>stochastic noise</h2><p>A procedural fBm cloud (single scattering, ratio tracking) with the density evaluated deterministically or by the one-sample fBm estimator (Fajardo &amp; Pharr); both unbiased, RMSE against 1024 spp.</p>\n<figure><img src=\"cloud_reference.png\" style=\"width:256px\"><figcaption>reference</figcaption></figure>";
+    for (name, secs, e) in cloud {
+        let _ = write!(
+            html,
+            "<figure><img src=\"cloud_{name}.png\" style=\"width:256px\"><figcaption>{name}: {secs:.2} s, RMSE {e:.4}</figcaption></figure>"
+        );
+    }
+    write_atomic(&path, html.as_bytes()).map_err(|e| format!("index.html: {e}"))
+}
