@@ -132,11 +132,10 @@ pub fn run(dir: &std::path::Path) -> Vec<(String, f64, f64)> {
             } else {
                 "deterministic"
             };
-            println!(
-                "{spp:>5} {name:<14} {secs:>9.2} {:>9.5}",
-                rmse(&img, &reference)
-            );
-            save(&dir, &format!("{name}_{spp}spp"), &img);
+            let e = rmse(&img, &reference);
+            println!("{spp:>5} {name:<14} {secs:>9.2} {e:>9.5}");
+            save(dir, &format!("cloud_{name}_{spp}spp"), &img);
+            rows.push((format!("{name}_{spp}spp"), secs, e));
         }
     }
     rows
