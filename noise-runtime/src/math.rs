@@ -90,9 +90,9 @@ pub fn split(x: f32) -> (i32, f32) {
     // Branch-free floor: truncation rounds negatives up, so step down by one when it did
     // (the sign bit of x − ⌊x⌋_trunc). Integer bit tests rather than float compares: LLVM turns
     // float selects into branches on x86, which mispredict on random input.
-    let down = (x - ft).to_bits() >> 31;
+    let down = ((x - ft).to_bits() > 0x8000_0000) as u32; // strictly negative, not −0
     let cell = t.saturating_sub(down as i32);
-    let f = x - (ft - f32::from_bits(1.0f32.to_bits() & down.wrapping_neg()));
+    let f = x - (ft - down as f32);
     // Keep f only when it is a valid offset in [0, 1) (NaN or infinite inputs give 0): for
     // non-negative floats the bit patterns order like the values.
     let keep = (f.to_bits() < 0x3f80_0000) as u32;

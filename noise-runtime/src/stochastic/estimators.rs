@@ -64,7 +64,7 @@ impl Side {
     /// 1.0 for the upper side, 0.0 for the lower, without a branch.
     #[inline(always)]
     pub(crate) fn float(self) -> f32 {
-        f32::from_bits(1.0f32.to_bits() & self.0)
+        (self.0 & 1) as f32
     }
 }
 
