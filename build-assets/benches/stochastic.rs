@@ -73,6 +73,18 @@ fn noise(c: &mut Criterion) {
     bench!(g, "sparse_conv3/stochastic", pts, xis, |p, x| {
         sparse_conv3_stochastic(p, 10, 1, x)
     });
+    bench!(g, "sparse_conv3/stochastic-1term", pts, xis, |p, x| {
+        sparse_conv3_stochastic1(p, 10, 1, x)
+    });
+    bench!(g, "fbm_sparse_conv3/deterministic", pts, xis, |p, _x| {
+        fbm_sparse_conv3(p, f10, 10, 1)
+    });
+    bench!(g, "fbm_sparse_conv3/stochastic", pts, xis, |p, x| {
+        fbm_sparse_conv3_stochastic(p, f10, 10, 1, x)
+    });
+    bench!(g, "fbm_sparse_conv3/stochastic-1term", pts, xis, |p, x| {
+        fbm_sparse_conv3_stochastic1(p, f10, 10, 1, x)
+    });
     bench!(g, "gabor3/deterministic", pts, xis, |p, _x| gabor3(
         p,
         Gabor::default(),

@@ -265,6 +265,7 @@ fn hard_cases_are_finite() {
                 simplex3_stochastic(p, 1, x),
                 sparse_conv3(p, 10, 1),
                 sparse_conv3_stochastic(p, 10, 1, x),
+                sparse_conv3_stochastic1(p, 10, 1, x),
                 gabor3(p, Gabor::default(), 1),
                 gabor3_stochastic(p, Gabor::default(), 1, x),
                 smooth_voronoi3(p, 1),
@@ -317,6 +318,7 @@ proptest! {
             fbm3(p, f, 2),
             fbm3_stochastic(p, f, 2, xi),
             fbm_sparse_conv3_stochastic(p, f, 3, 2, xi),
+            fbm_sparse_conv3_stochastic1(p, f, 3, 2, xi),
             smooth_voronoi3_stochastic(p, 2, SMOOTH_VORONOI_Q, xi),
             gabor3_stochastic(p, Gabor::default(), 2, xi),
         ] {

@@ -325,6 +325,43 @@ pub fn run() -> Vec<Row> {
             });
         }
     }
+    // The one-term estimators: the 27-cell sum sampled as well (one kernel evaluation).
+    let one_term: [(&str, f64, Sto); 2] = [
+        (
+            "sparse_conv3",
+            time(&pts, &xis, |p, x| sparse_conv3_stochastic1(p, 10, 1, x)),
+            Box::new(|p, x| sparse_conv3_stochastic1(p, 10, 1, x)),
+        ),
+        (
+            "fbm_sparse_conv3",
+            time(&pts, &xis, |p, x| {
+                fbm_sparse_conv3_stochastic1(p, fbm, 10, 1, x)
+            }),
+            Box::new(move |p, x| fbm_sparse_conv3_stochastic1(p, fbm, 10, 1, x)),
+        ),
+    ];
+    for (name, ns, sto) in one_term {
+        let det = functions()
+            .into_iter()
+            .find(|f| f.0 == name)
+            .expect("listed")
+            .1;
+        let exact: Vec<f32> = img.iter().map(|&p| det(p)).collect();
+        let (w, bias) = rmse(&img, &exact, &*sto, &|i, j| white[j * SIDE * SIDE + i]);
+        let (b, _) = rmse(&img, &exact, &*sto, &|i, j| {
+            stbn[j * SIDE * SIDE + i] as f32
+        });
+        let det_ns = times[name].0;
+        rows.push(Row {
+            noise: name.into(),
+            variant: "stochastic-1term".into(),
+            ns_per_eval: ns,
+            rmse: Some(w),
+            rmse_stbn: Some(b),
+            bias: Some(bias),
+            speedup: Some(det_ns / ns),
+        });
+    }
     rows.extend(peers(&pts, &xis));
     rows
 }

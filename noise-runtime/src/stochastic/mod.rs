@@ -50,7 +50,8 @@ pub use perlin::{
 };
 pub use simplex::{simplex3, simplex3_stochastic};
 pub use sparse::{
-    fbm_sparse_conv3, fbm_sparse_conv3_stochastic, sparse_conv3, sparse_conv3_stochastic,
+    fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_stochastic1, sparse_conv3,
+    sparse_conv3_stochastic, sparse_conv3_stochastic1,
 };
 pub use voronoi::{
     SMOOTH_VORONOI_Q, feature_point3, smooth_voronoi3, smooth_voronoi3_stochastic, worley3_f1,
