@@ -158,7 +158,7 @@ pub fn perlin2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
 }
 
 /// 3D Perlin noise (improved noise), about `[-1, 1]`.
-#[inline]
+#[inline(always)]
 pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
     let (ix, x) = split(p[0]);
     let (iy, y) = split(p[1]);
