@@ -156,3 +156,109 @@ fn gen_rejects_bad_flags_clearly() {
     let (ok, _, err) = noisebake(&["analyze", "/nonexistent.npy"]);
     assert!(!ok && err.contains("/nonexistent.npy"), "{err}");
 }
+
+#[test]
+fn points_writes_csv_in_the_unit_torus_and_rejects_unknown_methods() {
+    let d = tmp("points");
+    let csv = d.join("p.csv");
+    let (ok, out, err) = noisebake(&[
+        "points",
+        "--method",
+        "cnj",
+        "--n",
+        "1000",
+        "--seed",
+        "3",
+        "--out",
+        csv.to_str().unwrap(),
+        "--analyze",
+    ]);
+    assert!(ok, "{err}");
+    assert!(out.contains("ν_eff") && out.contains("q "), "{out}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let pts: Vec<(f64, f64)> = text
+        .lines()
+        .map(|l| {
+            let (x, y) = l.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect();
+    assert!((900..=1100).contains(&pts.len()));
+    assert!(
+        pts.iter()
+            .all(|&(x, y)| (0.0..1.0).contains(&x) && (0.0..1.0).contains(&y))
+    );
+    let (ok, _, err) = noisebake(&[
+        "points",
+        "--method",
+        "sobol",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        !ok && err.contains("unknown point method `sobol`") && err.contains("cnj-iterative"),
+        "{err}"
+    );
+}
+
+#[test]
+fn report_json_is_the_documented_list_of_rows() {
+    let d = tmp("report");
+    let json = d.join("rows.json");
+    let (ok, _, err) = noisebake(&[
+        "report",
+        "stochastic",
+        "--quick",
+        "--out",
+        d.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let rows: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = rows.as_array().expect("a list of rows");
+    for name in [
+        "perlin2",
+        "perlin3",
+        "perlin4",
+        "fbm3",
+        "sparse_conv3",
+        "fbm_sparse_conv3",
+        "gabor3",
+        "voronoi3",
+        "worley3",
+    ] {
+        let det = rows
+            .iter()
+            .find(|r| r["noise"] == name && r["variant"] == "deterministic")
+            .unwrap_or_else(|| panic!("no deterministic {name}"));
+        assert!(det["ns_per_eval"].as_f64().unwrap() > 0.0);
+        if name != "worley3" {
+            let s = rows
+                .iter()
+                .find(|r| r["noise"] == name && r["variant"] == "stochastic")
+                .unwrap_or_else(|| panic!("no stochastic {name}"));
+            let rmse = &s["rmse"];
+            // Averaging more ξ converges: RMSE falls roughly as 1/√k.
+            let (r1, r64) = (rmse["1"].as_f64().unwrap(), rmse["64"].as_f64().unwrap());
+            assert!(r64 < 0.3 * r1, "{name}: {r1} -> {r64}");
+            assert!(
+                s["bias"].as_f64().unwrap().abs() < 0.05 * r1.max(1e-3) + 1e-2,
+                "{name}"
+            );
+        }
+    }
+    let (ok, _, err) = noisebake(&[
+        "report",
+        "cnj",
+        "--json",
+        json.to_str().unwrap(),
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert!(
+        !ok && err.contains("--json writes the stochastic-noise rows"),
+        "{err}"
+    );
+}

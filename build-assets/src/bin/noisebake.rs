@@ -79,15 +79,20 @@ enum Command {
         /// Which section.
         #[arg(default_value = "all")]
         section: String,
-        /// Also write the rows as JSON.
+        /// Write the stochastic-noise rows as a JSON list (`{"noise", "variant", "ns_per_eval",
+        /// "rmse": {"1", "4", "16", "64"}, "bias", …}`).
         #[arg(long)]
         json: Option<PathBuf>,
-        /// Directory for plots.
+        /// Directory for plots and the FAST / CNJ JSON details.
         #[arg(long, default_value = "target/noisebake-report")]
         out: PathBuf,
         /// Include the slow full-size cases (FAST 128×128×32 cosine hemisphere).
         #[arg(long)]
         full: bool,
+        /// Time the stochastic noise on 1 024 points instead of 65 536 (seconds, not a minute;
+        /// noisier timings, same error columns).
+        #[arg(long)]
+        quick: bool,
     },
 }
 
@@ -112,7 +117,8 @@ fn main() -> ExitCode {
             json,
             out,
             full,
-        } => report(&section, json.as_deref(), &out, full),
+            quick,
+        } => report(&section, json.as_deref(), &out, full, quick),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -283,12 +289,23 @@ fn analyze(file: &Path, channels_last: bool) -> Result<(), String> {
     Ok(())
 }
 
-fn report(section: &str, json: Option<&Path>, out: &Path, full: bool) -> Result<(), String> {
+fn report(
+    section: &str,
+    json: Option<&Path>,
+    out: &Path,
+    full: bool,
+    quick: bool,
+) -> Result<(), String> {
     let mut log = |s: &str| println!("{s}");
     let mut doc = serde_json::Map::new();
     if !matches!(section, "all" | "fast" | "stochastic" | "cnj") {
         return Err(format!(
             "unknown report section `{section}`: use fast, stochastic, cnj or all"
+        ));
+    }
+    if json.is_some() && !matches!(section, "all" | "stochastic") {
+        return Err(format!(
+            "--json writes the stochastic-noise rows; section `{section}` has none (use `report stochastic` or `report`)"
         ));
     }
     if matches!(section, "all" | "cnj") {
@@ -341,7 +358,11 @@ fn report(section: &str, json: Option<&Path>, out: &Path, full: bool) -> Result<
                 "  (peers not compiled in: add `--features peers` to measure noise-functions and fastnoise-lite in this run)"
             );
         }
-        let rows = stochastic::run();
+        let rows = if quick {
+            stochastic::run_with(1024)
+        } else {
+            stochastic::run()
+        };
         println!(
             "  {:<18} {:<16} {:>9} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10}",
             "noise",
@@ -376,19 +397,17 @@ fn report(section: &str, json: Option<&Path>, out: &Path, full: bool) -> Result<
         }
         rows_json = Some(serde_json::to_value(&rows).map_err(|e| e.to_string())?);
     }
+    // FAST and CNJ details go beside the plots; `--json` is the documented list of
+    // speed-against-error rows of the stochastic-noise report.
+    for (key, value) in &doc {
+        let path = out.join(format!("{key}.json"));
+        let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
+        write_atomic(&path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
     if let Some(path) = json {
-        // The stochastic section alone is a list of rows (the documented format); with FAST
-        // included the document is an object with one key per section.
-        let value = match (section, rows_json) {
-            ("stochastic", Some(rows)) => rows,
-            (_, rows) => {
-                if let Some(rows) = rows {
-                    doc.insert("stochastic".into(), rows);
-                }
-                serde_json::Value::Object(doc)
-            }
-        };
-        let text = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
+        let rows = rows_json.ok_or("internal: the stochastic section did not run")?;
+        let text = serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?;
         write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
         println!("wrote {}", path.display());
     }
