@@ -115,9 +115,7 @@ fn cnj(c: &mut Criterion) {
                 let region = noise_runtime::cnj::Region2::from_parts(c, origin, dims, &buf);
                 let mut img = vec![0.0f32; 1920 * 1080];
                 img.par_chunks_mut(1920).enumerate().for_each(|(y, row)| {
-                    for (x, v) in row.iter_mut().enumerate() {
-                        *v = region.closest([x as f32 + 0.5, y as f32 + 0.5]).distance;
-                    }
+                    region.f1_row(y as f32 + 0.5, 0.5, 1.0, row);
                 });
                 img
             })

@@ -84,6 +84,16 @@ fn region_queries_equal_direct_queries() {
         assert!(cells.f2_minus_f1() >= 0.0 && cells.foam12(0.06).is_finite());
         assert!(cells.foam11(2.0, 0.06).is_finite());
     }
+    // The row fast path equals per-pixel queries, inside the cache and beyond it (fallback).
+    for y in [0.5f32, 13.25, 47.5, 80.0] {
+        let mut row = vec![0.0f32; 90];
+        r.f1_row(y, -10.0, 0.9, &mut row);
+        for (k, &v) in row.iter().enumerate() {
+            let x = -10.0 + k as f32 * 0.9;
+            let want = c.closest([x, y]).distance;
+            assert!((v - want).abs() < 1e-3, "({x}, {y}): {v} vs {want}");
+        }
+    }
     assert!(c.region([0.0, 0.0], [64.0, 48.0], &mut buf[..10]).is_none());
 }
 

@@ -485,6 +485,70 @@ impl<'a> Region2<'a> {
         out
     }
 
+    /// Worley F1 along a row of pixels: `out[k] = F1(x0 + k·dx, y)` (world units) — the fast
+    /// path for shading images. The two lattice rows that can hold the nearest site are fixed
+    /// for the whole pixel row, so per pixel only the column of the nearest site and a branch-
+    /// free minimum over the 19 cached candidates remain. Pixels whose candidates fall outside
+    /// the cache fall back to [`Region2::closest`].
+    pub fn f1_row(&self, y: f32, x0: f32, dx: f32, out: &mut [f32]) {
+        const ROW32: f32 = ROW as f32;
+        let qy = y * self.inv_spacing;
+        let jf = crate::math::split(qy / ROW32).0;
+        let rows = [jf, jf.wrapping_add(1)];
+        let par = rows.map(|j| (j & 1) as f32 * 0.5);
+        let dy2 = rows.map(|j| {
+            let d = qy - j as f32 * ROW32;
+            d * d
+        });
+        let w = self.dims[0] as i32;
+        for (k, o) in out.iter_mut().enumerate() {
+            let x = x0 + k as f32 * dx;
+            let qx = x * self.inv_spacing;
+            // Nearest site: the nearer of the two rows' nearest columns.
+            let i0 = crate::math::split(qx - par[0] + 0.5).0;
+            let i1 = crate::math::split(qx - par[1] + 0.5).0;
+            let e0 = qx - (i0 as f32 + par[0]);
+            let e1 = qx - (i1 as f32 + par[1]);
+            let second = (e1 * e1 + dy2[1] < e0 * e0 + dy2[0]) as usize;
+            let (ci, cj) = if second == 1 {
+                (i1, rows[1])
+            } else {
+                (i0, rows[0])
+            };
+            let c = ci.wrapping_sub(self.origin[0]);
+            let r = cj.wrapping_sub(self.origin[1]);
+            let inside = c >= 3
+                && r >= 3
+                && (c as usize) + 3 < self.dims[0]
+                && (r as usize) + 3 < self.dims[1];
+            if !inside {
+                *o = self.closest([x, y]).distance;
+                continue;
+            }
+            let base = r * w + c;
+            let deltas = &self.delta2[(cj & 1) as usize];
+            // Three running minima keep the dependency chains short (19 = 3·6 + 1).
+            let mut best = [f32::MAX; 3];
+            let d2 = |dl: i32| {
+                let p = self.points[(base + dl) as usize];
+                let (ex, ey) = (p[0] - x, p[1] - y);
+                ex * ex + ey * ey
+            };
+            for ch in deltas.chunks_exact(3) {
+                for a in 0..3 {
+                    let d = d2(ch[a]);
+                    best[a] = if d < best[a] { d } else { best[a] };
+                }
+            }
+            for &dl in deltas.chunks_exact(3).remainder() {
+                let d = d2(dl);
+                best[0] = if d < best[0] { d } else { best[0] };
+            }
+            let b = if best[0] < best[1] { best[0] } else { best[1] };
+            *o = crate::math::sqrt_fast(if b < best[2] { b } else { best[2] });
+        }
+    }
+
     /// [`Cnj2::closest`] from the cache.
     pub fn closest(&self, x: [f32; 2]) -> Neighbor2 {
         self.k_nearest::<1>(x)[0]
