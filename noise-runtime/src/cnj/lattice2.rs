@@ -501,6 +501,8 @@ impl<'a> Region2<'a> {
             d * d
         });
         let w = self.dims[0] as i32;
+        let mut cand = [[0.0f32; 2]; 19];
+        let mut cached_site = [i32::MIN; 2];
         for (k, o) in out.iter_mut().enumerate() {
             let x = x0 + k as f32 * dx;
             let qx = x * self.inv_spacing;
@@ -525,25 +527,30 @@ impl<'a> Region2<'a> {
                 *o = self.closest([x, y]).distance;
                 continue;
             }
-            let base = r * w + c;
-            let deltas = &self.delta2[(cj & 1) as usize];
+            // Consecutive pixels mostly share their nearest site: gather its 19 candidates once
+            // into a local array and reuse them until the site changes.
+            if [ci, cj] != cached_site {
+                let base = r * w + c;
+                let deltas = &self.delta2[(cj & 1) as usize];
+                for (slot, &dl) in cand.iter_mut().zip(deltas) {
+                    *slot = self.points[(base + dl) as usize];
+                }
+                cached_site = [ci, cj];
+            }
             // Three running minima keep the dependency chains short (19 = 3·6 + 1).
             let mut best = [f32::MAX; 3];
-            let d2 = |dl: i32| {
-                let p = self.points[(base + dl) as usize];
+            let d2 = |p: [f32; 2]| {
                 let (ex, ey) = (p[0] - x, p[1] - y);
                 ex * ex + ey * ey
             };
-            for ch in deltas.chunks_exact(3) {
+            for ch in cand.chunks_exact(3) {
                 for a in 0..3 {
                     let d = d2(ch[a]);
                     best[a] = if d < best[a] { d } else { best[a] };
                 }
             }
-            for &dl in deltas.chunks_exact(3).remainder() {
-                let d = d2(dl);
-                best[0] = if d < best[0] { d } else { best[0] };
-            }
+            let d = d2(cand[18]);
+            best[0] = if d < best[0] { d } else { best[0] };
             let b = if best[0] < best[1] { best[0] } else { best[1] };
             *o = crate::math::sqrt_fast(if b < best[2] { b } else { best[2] });
         }
