@@ -118,14 +118,28 @@ fn velocity_fields_are_divergence_free() {
             div3 += (w(hi)[a] - w(lo)[a]) as f64 / (2.0 * h);
         }
         assert!(div3.abs() < 2e-2, "3D divergence {div3}");
+        let sos = SumOfSines3::new(4);
+        let mut div_s = 0.0;
+        for a in 0..3 {
+            let (mut hi, mut lo) = (q, q);
+            hi[a] += h;
+            lo[a] -= h;
+            div_s += (sos.velocity(hi, 2.5)[a] - sos.velocity(lo, 2.5)[a]) as f64 / (2.0 * h);
+        }
+        assert!(div_s.abs() < 5e-2, "sum-of-sines divergence {div_s}");
     }
 }
 
 #[test]
 fn displacement_3d_stays_below_its_bound_and_queries_are_exact() {
-    for lattice in [Lattice3::Bcc, Lattice3::Cubic] {
+    for (lattice, potential) in [
+        (Lattice3::Bcc, Potential3::Gradient),
+        (Lattice3::Cubic, Potential3::Gradient),
+        (Lattice3::Bcc, Potential3::SumOfSines),
+    ] {
         let c = Cnj3 {
             lattice,
+            potential,
             ..Cnj3::default()
         };
         let bound = c.max_displacement() as f32;
@@ -140,7 +154,7 @@ fn displacement_3d_stays_below_its_bound_and_queries_are_exact() {
                 }
             }
         }
-        eprintln!("{lattice:?}: max displacement {max:.3} (bound {bound:.3})");
+        eprintln!("{lattice:?} {potential:?}: max displacement {max:.3} (bound {bound:.3})");
         assert!(max < bound, "{max} vs bound {bound}");
         let subs = if lattice == Lattice3::Bcc { 2 } else { 1 };
         let mut pts = Vec::new();

@@ -118,3 +118,75 @@ pub fn velocity3(p: [f64; 3], s: f64, seed: u32) -> [f32; 3] {
         (g2[0] - g1[1]) * inv,
     ]
 }
+
+/// Waves per component of the sum-of-sines potential.
+pub const SOS_WAVES: usize = 32;
+
+/// A sum-of-sines vector potential (CNJ §2.3, eq. 7–8, in 3D): per component,
+/// `N(q) = (1/√W) Σ_w a_w sin 2π(d_w·q + φ_w)` with directions uniform on the sphere, frequency
+/// `|d| = 1 + g` cycles per noise unit, `g` approximately normal (σ 1, Irwin–Hall of four
+/// uniforms), amplitude `a = e^{−g²}`, phase uniform — the paper's construction with σ = 1.
+#[derive(Clone, Debug)]
+pub struct SumOfSines3 {
+    amp: [f32; 3 * SOS_WAVES],
+    dir: [[f32; 3]; 3 * SOS_WAVES],
+    phase: [f32; 3 * SOS_WAVES],
+}
+
+impl SumOfSines3 {
+    /// The waves of `seed`.
+    pub fn new(seed: u32) -> SumOfSines3 {
+        let mut w = SumOfSines3 {
+            amp: [0.0; 3 * SOS_WAVES],
+            dir: [[0.0; 3]; 3 * SOS_WAVES],
+            phase: [0.0; 3 * SOS_WAVES],
+        };
+        let unit = |h: u32| (h >> 8) as f32 * (1.0 / 16_777_216.0);
+        for i in 0..3 * SOS_WAVES {
+            let h = |k: i32| crate::stochastic::hash3(i as i32, k, 0x5150_5150, seed);
+            let z = 1.0 - 2.0 * unit(h(0));
+            let r = crate::math::sqrt_fast((1.0 - z * z).max(0.0));
+            let az = unit(h(1));
+            let g = (unit(h(2)) + unit(h(3)) + unit(h(4)) + unit(h(5)) - 2.0) * 1.732_050_8;
+            let f = (1.0 + g).max(0.05);
+            w.dir[i] = [
+                f * r * crate::math::cos_turns(az),
+                f * r * crate::math::cos_turns(az - 0.25),
+                f * z,
+            ];
+            w.amp[i] = crate::math::exp_neg(-g * g);
+            w.phase[i] = unit(h(6));
+        }
+        w
+    }
+
+    /// Gradients of the three components at `q` (noise units).
+    fn gradients(&self, q: [f64; 3]) -> [[f32; 3]; 3] {
+        let norm = core::f32::consts::TAU / crate::math::sqrt(SOS_WAVES as f32);
+        let mut g = [[0.0f32; 3]; 3];
+        for (c, gc) in g.iter_mut().enumerate() {
+            for w in c * SOS_WAVES..(c + 1) * SOS_WAVES {
+                let d = self.dir[w];
+                let t = d[0] as f64 * q[0] + d[1] as f64 * q[1] + d[2] as f64 * q[2];
+                let turns = crate::math::fract_f64(t) as f32 + self.phase[w];
+                let k = self.amp[w] * norm * crate::math::cos_turns(turns);
+                for a in 0..3 {
+                    gc[a] += k * d[a];
+                }
+            }
+        }
+        g
+    }
+
+    /// The curl of the potential at `p` (lattice units) for noise scale `s`.
+    pub fn velocity(&self, p: [f64; 3], s: f64) -> [f32; 3] {
+        let inv = 1.0 / s;
+        let [g1, g2, g3] = self.gradients([p[0] * inv, p[1] * inv, p[2] * inv]);
+        let inv = inv as f32;
+        [
+            (g3[1] - g2[2]) * inv,
+            (g1[2] - g3[0]) * inv,
+            (g2[0] - g1[1]) * inv,
+        ]
+    }
+}

@@ -23,9 +23,9 @@ mod field;
 mod lattice2;
 mod lattice3;
 
-pub use field::{noise2, velocity2, velocity3};
+pub use field::{SOS_WAVES, SumOfSines3, noise2, velocity2, velocity3};
 pub use lattice2::{Cells, Cnj2, Neighbor2, Region2};
-pub use lattice3::{Cnj3, Lattice3, Neighbor3};
+pub use lattice3::{Cnj3, Lattice3, Neighbor3, Potential3};
 
 /// How the streamline is traced (eq. 3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
