@@ -121,11 +121,12 @@ pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), Stri
 pub fn summary(results: &[AppResult], cfg: &Config) {
     let mc = cfg.mc_frames.min(cfg.frames);
     println!(
-        "\n{:<13} {:<14} {:>9} {:>10} {:>9} {:>9} {:>10} {:>9}",
+        "\n{:<13} {:<14} {:>9} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}",
         "application",
         "noise",
         "rmse@1",
         "filtered@1",
+        "mc@4",
         format!("mc@{mc}"),
         format!("ema@{}", cfg.frames),
         "ema+blur",
@@ -134,11 +135,12 @@ pub fn summary(results: &[AppResult], cfg: &Config) {
     for r in results {
         for (m, _) in &r.runs {
             println!(
-                "{:<13} {:<14} {:>9.4} {:>10.4} {:>9.4} {:>9.4} {:>10.4} {:>9.2}",
+                "{:<13} {:<14} {:>9.4} {:>10.4} {:>9.4} {:>9.4} {:>9.4} {:>10.4} {:>9.2}",
                 r.name,
                 m.noise.name(),
                 m.mc[0],
                 m.filtered_1,
+                m.mc[3.min(m.mc.len() - 1)],
                 m.mc[mc - 1],
                 m.ema[cfg.frames - 1],
                 m.denoised,
