@@ -222,3 +222,20 @@ pub fn sqrt_f64(x: f64) -> f64 {
     }
     y
 }
+
+/// [`split`] for callers that have checked `|x| < 2^31` (so the cell cannot saturate and the
+/// offset is always in `[0, 1)`): no guards, a few instructions fewer on the hot path.
+#[inline(always)]
+pub fn split_in_range(x: f32) -> (i32, f32) {
+    let t = x as i32;
+    let ft = t as f32;
+    let down = ((x - ft).to_bits() > 0x8000_0000) as u32;
+    (t - down as i32, x - (ft - down as f32))
+}
+
+/// Whether every coordinate is finite and below 2^31 in magnitude (then [`split_in_range`]
+/// applies).
+#[inline(always)]
+pub fn in_split_range<const N: usize>(p: [f32; N]) -> bool {
+    p.iter().all(|v| v.abs() < 2_147_483_520.0)
+}

@@ -160,9 +160,19 @@ pub fn perlin2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
 /// 3D Perlin noise (improved noise), about `[-1, 1]`.
 #[inline(always)]
 pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
-    let (ix, x) = split(p[0]);
-    let (iy, y) = split(p[1]);
-    let (iz, z) = split(p[2]);
+    // One predictable branch buys guard-free splits for every ordinary coordinate.
+    if crate::math::in_split_range(p) {
+        perlin3_with(p, seed, crate::math::split_in_range)
+    } else {
+        perlin3_with(p, seed, split)
+    }
+}
+
+#[inline(always)]
+fn perlin3_with(p: [f32; 3], seed: u32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
+    let (ix, x) = sp(p[0]);
+    let (iy, y) = sp(p[1]);
+    let (iz, z) = sp(p[2]);
     let (u, v, w) = (fade(x), fade(y), fade(z));
     let (x1, y1, z1) = (x - 1.0, y - 1.0, z - 1.0);
     let xp0 = (ix as u32).wrapping_mul(PRIME[0]);
