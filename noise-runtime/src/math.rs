@@ -239,3 +239,16 @@ pub fn split_in_range(x: f32) -> (i32, f32) {
 pub fn in_split_range<const N: usize>(p: [f32; N]) -> bool {
     p.iter().all(|v| v.abs() < 2_147_483_520.0)
 }
+
+/// Perlin's quintic fade `6t⁵ − 15t⁴ + 10t³` (Perlin 2002): C² interpolation weights.
+#[inline(always)]
+pub fn fade(t: f32) -> f32 {
+    t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+}
+
+/// The derivative of [`fade`], `30 t² (t − 1)²`.
+#[inline(always)]
+pub fn dfade(t: f32) -> f32 {
+    let s = t * (t - 1.0);
+    30.0 * s * s
+}

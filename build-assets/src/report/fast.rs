@@ -28,6 +28,22 @@ pub struct Run {
     pub curve: Vec<(f64, f64)>,
 }
 
+impl Run {
+    /// One line: case, threads, time, rounds and loss.
+    pub fn describe(&self) -> String {
+        format!(
+            "  {} [{} thread(s)]: {:.2} s, {} rounds, loss {:.1} -> {:.1} ({:.2} %)",
+            self.case,
+            self.threads,
+            self.seconds,
+            self.rounds,
+            self.initial_loss,
+            self.final_loss,
+            100.0 * self.final_loss / self.initial_loss
+        )
+    }
+}
+
 /// Error after filtering of one mask.
 #[derive(Clone, Debug, Serialize)]
 pub struct FilteredError {
@@ -154,16 +170,7 @@ pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<FastRepo
             &dims,
             threads,
         );
-        log(&format!(
-            "  {} [{} thread(s)]: {:.2} s, {} rounds, loss {:.1} -> {:.1} ({:.2} %)",
-            run.case,
-            threads,
-            run.seconds,
-            run.rounds,
-            run.initial_loss,
-            run.final_loss,
-            100.0 * run.final_loss / run.initial_loss
-        ));
+        log(&run.describe());
         if let Some(prev) = &outcome {
             let prev: &Outcome = prev;
             if prev.samples != o.samples {
@@ -242,16 +249,7 @@ pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<FastRepo
                 rounds.is_none().then_some(180.0),
             );
             rounds = Some(run.rounds as u32);
-            log(&format!(
-                "  {} [{} thread(s)]: {:.1} s, {} rounds, loss {:.1} -> {:.1} ({:.2} %)",
-                run.case,
-                threads,
-                run.seconds,
-                run.rounds,
-                run.initial_loss,
-                run.final_loss,
-                100.0 * run.final_loss / run.initial_loss
-            ));
+            log(&run.describe());
             runs.push(run);
         }
     }

@@ -9,18 +9,8 @@
 //! `f64`, so the field is exact for any lattice site an `i32` can name; the arithmetic after the
 //! split is `f32`.
 
+use crate::math::{dfade, fade};
 use crate::stochastic::perlin3_grad_cell;
-
-#[inline(always)]
-fn fade(t: f32) -> f32 {
-    t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
-}
-
-#[inline(always)]
-fn dfade(t: f32) -> f32 {
-    let s = t * (t - 1.0);
-    30.0 * s * s
-}
 
 /// Splits `x` into cell and offset in `[0, 1)`, in `f64` (total for finite input).
 #[inline(always)]

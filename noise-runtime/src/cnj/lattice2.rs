@@ -1,8 +1,8 @@
 //! CNJ on the 2D triangular lattice: direct jittering of a site, exact closest and k-nearest
 //! queries from a fixed candidate set of hex rings, cellular values, and a cached region.
 
-use super::Integrator;
 use super::field::velocity2;
+use super::{Integrator, TopK};
 use crate::math::{ceil_f64, floor_f64, round_f64, sqrt_f64};
 use crate::stochastic::hash2;
 
@@ -160,14 +160,7 @@ impl Cnj2 {
     };
 
     fn sane(&self) -> (f64, f64, u32, f64) {
-        let pos = |x: f32, d: f32| if x.is_finite() && x > 0.0 { x } else { d };
-        let t = if self.t.is_finite() { self.t } else { 0.0 };
-        (
-            t as f64,
-            pos(self.s, 1.0).max(1e-3) as f64,
-            self.steps.clamp(1, 64),
-            pos(self.spacing, 1.0) as f64,
-        )
+        super::sane(self.t, self.s, self.steps, self.spacing)
     }
 
     /// Position of a lattice site in lattice units (spacing 1).
@@ -253,27 +246,17 @@ impl Cnj2 {
         let q = [x[0] / sp, x[1] / sp];
         let center = Self::nearest_site(q);
         let rings = if K == 1 { 2 } else { 3 };
-        let mut best = [Neighbor2::NONE; K];
-        let mut d2 = [f64::MAX; K];
+        let mut best = TopK::<K, Neighbor2>::new(Neighbor2::NONE);
         for_ring_sites(center, rings, |site| {
             let p = self.point_f64(site);
             let dd = (p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]);
-            if dd < d2[K - 1] {
-                let mut k = K - 1;
-                while k > 0 && d2[k - 1] > dd {
-                    d2[k] = d2[k - 1];
-                    best[k] = best[k - 1];
-                    k -= 1;
-                }
-                d2[k] = dd;
-                best[k] = Neighbor2 {
-                    point: [p[0] as f32, p[1] as f32],
-                    distance: (sqrt_f64(dd) as f32).min(f32::MAX),
-                    site,
-                };
-            }
+            best.offer(dd, || Neighbor2 {
+                point: [p[0] as f32, p[1] as f32],
+                distance: (sqrt_f64(dd) as f32).min(f32::MAX),
+                site,
+            });
         });
-        best
+        best.val
     }
 
     /// The `K ≤ 4` nearest jittered points to `x` (world units), nearest first.
@@ -458,19 +441,15 @@ impl<'a> Region2<'a> {
             d2[0] = f32::from_bits((key >> 8) as u32);
             at[0] = (key & 0xff) as usize;
         } else {
+            let mut top = TopK::<K, usize>::new(0);
             for n in 0..table.len() {
                 let p = fetch(n);
                 let dd = (p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]);
-                if dd < d2[K - 1] {
-                    let mut k = K - 1;
-                    while k > 0 && d2[k - 1] > dd {
-                        d2[k] = d2[k - 1];
-                        at[k] = at[k - 1];
-                        k -= 1;
-                    }
-                    d2[k] = dd;
-                    at[k] = n;
-                }
+                top.offer(dd as f64, || n);
+            }
+            for k in 0..K {
+                d2[k] = top.key[k] as f32;
+                at[k] = top.val[k];
             }
         }
         let mut out = [Neighbor2::NONE; K];

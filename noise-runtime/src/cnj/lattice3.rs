@@ -2,8 +2,8 @@
 //! lattice displaced by the curl of a vector potential of three gradient noises, and exact
 //! closest / k-nearest queries by scanning every site within a proven radius.
 
-use super::Integrator;
 use super::field::{SumOfSines3, velocity3};
+use super::{Integrator, TopK};
 use crate::math::{ceil_f64, floor_f64, sqrt_f64};
 use crate::stochastic::hash4;
 
@@ -90,14 +90,7 @@ impl Neighbor3 {
 
 impl Cnj3 {
     fn sane(&self) -> (f64, f64, u32, f64) {
-        let pos = |x: f32, d: f32| if x.is_finite() && x > 0.0 { x } else { d };
-        let t = if self.t.is_finite() { self.t } else { 0.0 };
-        (
-            t as f64,
-            pos(self.s, 1.0).max(1e-3) as f64,
-            self.steps.clamp(1, 64),
-            pos(self.spacing, 1.0) as f64,
-        )
+        super::sane(self.t, self.s, self.steps, self.spacing)
     }
 
     /// Position of a site in cube units.
@@ -194,8 +187,7 @@ impl Cnj3 {
         };
         let r = r_k + 2.0 * self.max_displacement();
         let r2 = r * r;
-        let mut best = [Neighbor3::NONE; K];
-        let mut d2 = [f64::MAX; K];
+        let mut best = TopK::<K, Neighbor3>::new(Neighbor3::NONE);
         let subs: &[i32] = match self.lattice {
             Lattice3::Bcc => &[0, 1],
             Lattice3::Cubic => &[0],
@@ -219,25 +211,16 @@ impl Cnj3 {
                         let site = [i as i32, j as i32, k as i32, b];
                         let p = self.point_f64(site);
                         let dd = (0..3).map(|a| (p[a] - x[a]) * (p[a] - x[a])).sum::<f64>();
-                        if dd < d2[K - 1] {
-                            let mut n = K - 1;
-                            while n > 0 && d2[n - 1] > dd {
-                                d2[n] = d2[n - 1];
-                                best[n] = best[n - 1];
-                                n -= 1;
-                            }
-                            d2[n] = dd;
-                            best[n] = Neighbor3 {
-                                point: [p[0] as f32, p[1] as f32, p[2] as f32],
-                                distance: (sqrt_f64(dd) as f32).min(f32::MAX),
-                                site,
-                            };
-                        }
+                        best.offer(dd, || Neighbor3 {
+                            point: [p[0] as f32, p[1] as f32, p[2] as f32],
+                            distance: (sqrt_f64(dd) as f32).min(f32::MAX),
+                            site,
+                        });
                     }
                 }
             }
         }
-        best
+        best.val
     }
 
     /// The `K ≤ 4` nearest jittered points to `x` (world units), nearest first.

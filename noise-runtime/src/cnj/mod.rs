@@ -27,6 +27,49 @@ pub use field::{SOS_WAVES, SumOfSines3, noise2, velocity2, velocity3};
 pub use lattice2::{Cells, Cnj2, Neighbor2, Region2};
 pub use lattice3::{Cnj3, Lattice3, Neighbor3, Potential3};
 
+/// The parameters `(t, s, steps, spacing)` made safe: a non-finite `t` becomes 0, a
+/// non-positive or non-finite `s` or spacing becomes 1 (and `s ≥ 10⁻³`), steps in `1..=64`.
+fn sane(t: f32, s: f32, steps: u32, spacing: f32) -> (f64, f64, u32, f64) {
+    let pos = |x: f32| if x.is_finite() && x > 0.0 { x } else { 1.0 };
+    (
+        if t.is_finite() { t as f64 } else { 0.0 },
+        pos(s).max(1e-3) as f64,
+        steps.clamp(1, 64),
+        pos(spacing) as f64,
+    )
+}
+
+/// The `K` smallest keys offered so far with their values, in ascending order (insertion into
+/// a fixed array: K ≤ 4, so nothing cleverer pays).
+struct TopK<const K: usize, T: Copy> {
+    key: [f64; K],
+    val: [T; K],
+}
+
+impl<const K: usize, T: Copy> TopK<K, T> {
+    fn new(fill: T) -> Self {
+        TopK {
+            key: [f64::MAX; K],
+            val: [fill; K],
+        }
+    }
+
+    /// Offers `val` with `key`; `make` builds it only when it enters the list.
+    #[inline]
+    fn offer(&mut self, key: f64, make: impl FnOnce() -> T) {
+        if key < self.key[K - 1] {
+            let mut k = K - 1;
+            while k > 0 && self.key[k - 1] > key {
+                self.key[k] = self.key[k - 1];
+                self.val[k] = self.val[k - 1];
+                k -= 1;
+            }
+            self.key[k] = key;
+            self.val[k] = make();
+        }
+    }
+}
+
 /// How the streamline is traced (eq. 3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Integrator {

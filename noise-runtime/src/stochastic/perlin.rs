@@ -6,20 +6,7 @@
 
 use super::estimators::{choose, sanitize_xi};
 use super::hash::{PRIME, corner, hash4};
-use crate::math::split;
-
-/// The quintic fade `6t⁵ − 15t⁴ + 10t³`.
-#[inline(always)]
-fn fade(t: f32) -> f32 {
-    t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
-}
-
-/// Its derivative `30 t² (t − 1)²`.
-#[inline(always)]
-fn dfade(t: f32) -> f32 {
-    let s = t * (t - 1.0);
-    30.0 * s * s
-}
+use crate::math::{dfade, fade, split};
 
 #[inline(always)]
 fn lerp(t: f32, a: f32, b: f32) -> f32 {

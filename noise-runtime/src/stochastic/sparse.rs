@@ -43,10 +43,11 @@ fn r2(f: [f32; 3], q: [f32; 3]) -> f32 {
     x * x + y * y + z * z
 }
 
-/// Calls `each(cell hash, offset of p from that cell's corner)` for the cells of the 3×3×3
-/// block that the kernel's unit ball around `p` reaches (about 21 of 27 on average).
+/// The 3×3×3 cell block around `p`: per axis, the hash products of the cells at offsets
+/// −1, 0, +1, the offset of `p` in its cell, and the squared distance from `p` to each of the
+/// three slabs (0 for its own).
 #[inline(always)]
-pub(crate) fn cells(p: [f32; 3], seed: u32, mut each: impl FnMut(u32, [f32; 3])) {
+fn block(p: [f32; 3]) -> ([[u32; 3]; 3], [f32; 3], [[f32; 3]; 3]) {
     let mut hp = [[0u32; 3]; 3];
     let mut f = [0.0f32; 3];
     let mut slab = [[0.0f32; 3]; 3];
@@ -61,6 +62,14 @@ pub(crate) fn cells(p: [f32; 3], seed: u32, mut each: impl FnMut(u32, [f32; 3]))
         f[a] = fa;
         slab[a] = [fa * fa, 0.0, (1.0 - fa) * (1.0 - fa)];
     }
+    (hp, f, slab)
+}
+
+/// Calls `each(cell hash, offset of p from that cell's corner)` for the cells of the 3×3×3
+/// block that the kernel's unit ball around `p` reaches (about 21 of 27 on average).
+#[inline(always)]
+pub(crate) fn cells(p: [f32; 3], seed: u32, mut each: impl FnMut(u32, [f32; 3])) {
+    let (hp, f, slab) = block(p);
     for k in 0..3 {
         for j in 0..3 {
             let s_jk = slab[1][j] + slab[2][k];
@@ -153,20 +162,7 @@ pub fn fbm_sparse_conv3_stochastic(p: [f32; 3], f: Fractal, n: u32, seed: u32, x
 #[inline]
 pub fn sparse_conv3_stochastic1(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
     let n = n.clamp(1, 64);
-    let mut hp = [[0u32; 3]; 3];
-    let mut f = [0.0f32; 3];
-    let mut slab = [[0.0f32; 3]; 3];
-    for a in 0..3 {
-        let (c, fa) = split(p[a]);
-        let base = (c as u32).wrapping_mul(PRIME[a]);
-        hp[a] = [
-            base.wrapping_sub(PRIME[a]),
-            base,
-            base.wrapping_add(PRIME[a]),
-        ];
-        f[a] = fa;
-        slab[a] = [fa * fa, 0.0, (1.0 - fa) * (1.0 - fa)];
-    }
+    let (hp, f, slab) = block(p);
     // The reachable cells, in a fixed order.
     let mut reach = [(0u8, 0u8, 0u8); 27];
     let mut count = 0usize;
