@@ -66,6 +66,14 @@ pub struct Cells {
 }
 
 impl Cells {
+    /// The cellular values of the four nearest points (nearest first).
+    fn from_nearest(n: [Neighbor2; 4]) -> Cells {
+        Cells {
+            d: n.map(|k| k.distance),
+            site: n[0].site,
+        }
+    }
+
     /// F1: distance to the nearest point.
     pub fn f1(&self) -> f32 {
         self.d[0]
@@ -271,11 +279,7 @@ impl Cnj2 {
 
     /// Cellular values at `x`: the four nearest distances (F1…F4) and the nearest site.
     pub fn cells(&self, x: [f32; 2]) -> Cells {
-        let n = self.k_nearest::<4>(x);
-        Cells {
-            d: [n[0].distance, n[1].distance, n[2].distance, n[3].distance],
-            site: n[0].site,
-        }
+        Cells::from_nearest(self.k_nearest::<4>(x))
     }
 
     /// Sites (columns × rows) a [`Region2`] over the world rectangle `[min, max]` caches.
@@ -542,10 +546,6 @@ impl<'a> Region2<'a> {
 
     /// [`Cnj2::cells`] from the cache.
     pub fn cells(&self, x: [f32; 2]) -> Cells {
-        let n = self.k_nearest::<4>(x);
-        Cells {
-            d: [n[0].distance, n[1].distance, n[2].distance, n[3].distance],
-            site: n[0].site,
-        }
+        Cells::from_nearest(self.k_nearest::<4>(x))
     }
 }
