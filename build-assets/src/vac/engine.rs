@@ -1,5 +1,5 @@
 //! The fast void-and-cluster engine: local splats on a fixed-point energy field and lazy
-//! priority queues, so no step rescans the volume.
+//! block minima, so no step rescans the volume.
 //!
 //! Phases (Ulichney 1993; STBN §3 and §4.1):
 //! 1. an initial binary pattern of `round(density · n)` distinct texels (drawn without
@@ -14,17 +14,29 @@
 //! never by memory order, so no raster pattern can appear.
 //!
 //! Speed: a splat touches only the truncated footprint of each group, and candidates wait in a
-//! [`CandidateQueue`] with *lazy* keys. In phases I–III energies move one way only (they fall
-//! while clusters are removed, rise while voids are filled), so a queued key is a bound on the
-//! true key and is refreshed in place when it reaches the top. During relaxation energies move
-//! both ways; every change that improves a candidate queues a fresh key. Energy, tie rank and
-//! state of a texel share one 16-byte record, so validating a key costs one cache line.
+//! [`BlockQueue`] of per-block minimum keys. Those keys are *lazy lower bounds*: a splat that
+//! makes candidates worse leaves them alone, and the top block is recomputed (8 texels) until
+//! its key is exact, so a step pays for the few blocks that reach the top, not for the ≈ 40 it
+//! touched. In phases I–III energies move one way only, so every change makes candidates worse.
+//! During relaxation energies move both ways; a change that improves a candidate lowers its
+//! block's key at once ([`BlockQueue::lower`]).
+//!
+//! Memory: the splat writes only the `i64` energy array. In phases I–III the texels that are not
+//! candidates carry a [`POISON`] offset instead of an on/off test, so a block's minimum reads
+//! just its energies and tie ranks.
 
 use super::kernel::{Axis, Footprint};
-use super::queue::{CandidateQueue, key_index};
+use super::queue::{BLOCK, BLOCK_BITS, BlockQueue, key_index};
+use super::tree::ABSENT;
 use crate::rng::{SplitMix64, permutation};
 
 const INVALID: u32 = u32::MAX;
+
+/// Energy offset that takes a texel out of the running in phases I–III: added to texels that are
+/// on while voids are sought, subtracted from texels that are off while clusters are. Any real
+/// energy is below `2^52` (a footprint's total weight in fixed point), so poisoned and real keys
+/// never mix and the sums cannot overflow.
+const POISON: i64 = 1 << 62;
 
 /// Receives `(done, total)` texel counts as ranking advances.
 pub type ProgressFn<'a> = &'a mut dyn FnMut(u64, u64);
@@ -50,24 +62,22 @@ pub(crate) struct Engine<'f> {
     pad: Vec<usize>,
     sizes: Vec<usize>,
     strides: Vec<usize>,
-    texels: Vec<Texel>,
+    /// Fixed-point energy of each texel (plus or minus [`POISON`] in phases I–III).
+    energy: Vec<i64>,
+    /// Tie-break rank of each texel (a permutation of `0..n`).
+    tie: Vec<u32>,
+    /// Whether each texel is on (kept during the initial pattern and relaxation).
+    on: Vec<bool>,
     /// `K(p)` when axes are open (it varies near borders); `None` when it is constant.
     k_field: Option<Vec<i64>>,
-}
-
-/// One texel's state: fixed-point energy, tie-break rank, on/off.
-#[derive(Clone, Copy, Debug, Default)]
-#[repr(C, align(16))]
-struct Texel {
-    energy: i64,
-    tie: u32,
-    on: bool,
 }
 
 fn bias(key: i64) -> u64 {
     (key as u64) ^ (1 << 63)
 }
 
+/// A queue key: energy first, then tie rank; the texel index rides in the low bits.
+#[inline(always)]
 fn pack(key: i64, tie: u32, idx: usize) -> u128 {
     (bias(key) as u128) << 64 | (tie as u128) << 32 | idx as u128
 }
@@ -117,14 +127,9 @@ impl<'f> Engine<'f> {
             pad,
             sizes,
             strides,
-            texels: tie
-                .iter()
-                .map(|&t| Texel {
-                    energy: 0,
-                    tie: t,
-                    on: false,
-                })
-                .collect(),
+            energy: vec![0; n],
+            tie,
+            on: vec![false; n],
             k_field: None,
         };
         if axes.iter().any(|a| !a.toroidal) {
@@ -184,7 +189,7 @@ impl<'f> Engine<'f> {
                         let mut q = base;
                         for (j, &a) in g.axes.iter().enumerate() {
                             let v = self.wrap[a]
-                                [(coord[a] as isize + o[j] as isize) as usize + self.pad[a]];
+                                [((coord[a] + self.pad[a]) as isize + o[j] as isize) as usize];
                             if v == INVALID {
                                 continue 'entry;
                             }
@@ -197,78 +202,78 @@ impl<'f> Engine<'f> {
         }
     }
 
-    /// Turns `p` on or off and updates the energy field; `visit(q, on)` sees every touched texel.
+    /// Adds `sign ·` the footprint of `p` to the energy field; `touched(q)` sees each texel.
     #[inline(always)]
-    fn toggle(&mut self, p: usize, turn_on: bool, mut visit: impl FnMut(usize, bool)) {
-        self.texels[p].on = turn_on;
-        let sign = if turn_on { 1 } else { -1 };
-        // Split borrows: the footprint walk reads tables, the closure writes texels.
-        let mut texels = std::mem::take(&mut self.texels);
+    fn splat(&mut self, p: usize, sign: i64, mut touched: impl FnMut(usize)) {
+        // Split borrows: the footprint walk reads tables, the closure writes energies.
+        let mut energy = std::mem::take(&mut self.energy);
         self.for_each(p, |q, w| {
-            let t = &mut texels[q];
-            t.energy += sign * w;
-            visit(q, t.on);
+            energy[q] += sign * w;
+            touched(q);
         });
-        self.texels = texels;
+        self.energy = energy;
     }
 
-    /// Key of an off texel: lowest energy first (phase III: lowest `F(p) − K(p)`), ties by rank.
+    /// Queue key of texel `p` as a void (lowest energy first; in phase III with open axes
+    /// lowest `F(p) − K(p)`) or as a cluster (highest energy first); ties by rank.
     #[inline(always)]
-    fn void_key(&self, p: usize, phase3: bool) -> u128 {
-        let t = &self.texels[p];
-        let e = match (&self.k_field, phase3) {
-            (Some(k), true) => t.energy - k[p],
-            _ => t.energy,
-        };
-        pack(e, t.tie, p)
-    }
-
-    /// Key of an on texel: highest energy first, ties by rank.
-    #[inline(always)]
-    fn cluster_key(&self, p: usize) -> u128 {
-        let t = &self.texels[p];
-        pack(-t.energy, t.tie, p)
-    }
-
-    fn key(&self, p: usize, voids: bool, phase3: bool) -> u128 {
-        if voids {
-            self.void_key(p, phase3)
+    fn key<const VOIDS: bool, const PHASE3: bool>(&self, p: usize) -> u128 {
+        let e = self.energy[p];
+        let e = if !VOIDS {
+            -e
+        } else if PHASE3 {
+            e - self.k_field.as_ref().map_or(0, |k| k[p])
         } else {
-            self.cluster_key(p)
-        }
+            e
+        };
+        pack(e, self.tie[p], p)
     }
 
-    /// A queue of every off texel (`voids`) or every on texel, with fresh keys.
-    fn queue(&self, voids: bool, phase3: bool) -> CandidateQueue {
-        let n = self.texels.len();
-        let keys = (0..n)
-            .filter(|&p| self.texels[p].on != voids)
-            .map(|p| self.key(p, voids, phase3));
-        CandidateQueue::new(n, keys)
-    }
-
-    /// Takes the best candidate out of a lazy queue: an off texel when `voids`, else an on one.
-    /// A stale key that underestimates the texel is refreshed in place; one that overestimates it
-    /// is dropped (a fresher key is queued already).
-    fn take(&self, q: &mut CandidateQueue, voids: bool, phase3: bool) -> usize {
-        while let Some(k) = q.peek() {
-            let p = key_index(k);
-            if self.texels[p].on == voids {
-                q.pop();
-                continue;
-            }
-            let cur = self.key(p, voids, phase3);
-            if cur == k {
-                q.pop();
-                return p;
-            }
-            if cur > k {
-                q.refresh_top(cur);
+    /// Smallest key in block `b`: poisoned texels lose by their offset (phases I–III), or, with
+    /// `CHECK_ON`, texels of the wrong state are skipped (relaxation).
+    #[inline(always)]
+    fn block_min<const VOIDS: bool, const PHASE3: bool, const CHECK_ON: bool>(
+        &self,
+        b: usize,
+    ) -> u128 {
+        let lo = b << BLOCK_BITS;
+        let hi = (lo + BLOCK).min(self.energy.len());
+        let mut m = ABSENT;
+        for p in lo..hi {
+            let k = self.key::<VOIDS, PHASE3>(p);
+            let k = if CHECK_ON && self.on[p] == VOIDS {
+                ABSENT
             } else {
-                q.pop();
-            }
+                k
+            };
+            m = m.min(k);
         }
-        unreachable!("the queue holds every candidate texel")
+        m
+    }
+
+    /// A queue over every block.
+    fn queue<const VOIDS: bool, const PHASE3: bool, const CHECK_ON: bool>(&self) -> BlockQueue {
+        BlockQueue::new(self.energy.len(), |b| {
+            self.block_min::<VOIDS, PHASE3, CHECK_ON>(b)
+        })
+    }
+
+    /// Takes the best candidate from a queue whose block keys are lower bounds: the top block is
+    /// recomputed until its key is exact.
+    #[inline(always)]
+    fn take<const VOIDS: bool, const PHASE3: bool, const CHECK_ON: bool>(
+        &self,
+        q: &mut BlockQueue,
+    ) -> usize {
+        loop {
+            let (b, k) = q.top().expect("the queue holds a candidate");
+            let m = self.block_min::<VOIDS, PHASE3, CHECK_ON>(b);
+            if m == k {
+                return key_index(k);
+            }
+            debug_assert!(m > k, "a lazy key overestimated its block");
+            q.set(b, m);
+        }
     }
 }
 
@@ -297,34 +302,34 @@ pub fn rank(
     // Initial binary pattern: the first m texels of a random permutation (no duplicates).
     let order = permutation(n, &mut rng);
     for &p in &order[..m] {
-        e.toggle(p as usize, true, |_, _| {});
+        e.on[p as usize] = true;
+        e.splat(p as usize, 1, |_| {});
     }
     drop(order);
 
-    // Relaxation: tightest cluster -> largest void until the two coincide. Removing a point
-    // lowers energies (better voids: queue them); adding one raises them (tighter clusters).
-    let mut clusters = e.queue(false, false);
-    let mut voids = e.queue(true, false);
+    // Relaxation: tightest cluster -> largest void until the two coincide.
+    let mut clusters = e.queue::<false, false, true>();
+    let mut voids = e.queue::<true, false, true>();
     let cap = 64 * m + 4096;
-    let mut fresh = Vec::new();
+    let mut touched = Vec::with_capacity(fp.len());
     loop {
-        let p = e.take(&mut clusters, false, false);
-        e.toggle(p, false, |q, on| {
-            if !on {
-                fresh.push(q);
+        // Removing p lowers energies: void keys fall (offer them), cluster keys rise (lazy).
+        let p = e.take::<false, false, true>(&mut clusters);
+        e.on[p] = false;
+        e.splat(p, -1, |t| touched.push(t));
+        for t in touched.drain(..) {
+            if !e.on[t] {
+                voids.lower(t >> BLOCK_BITS, e.key::<true, false>(t));
             }
-        });
-        for q in fresh.drain(..) {
-            voids.push(e.void_key(q, false));
         }
-        let q = e.take(&mut voids, true, false);
-        e.toggle(q, true, |r, on| {
-            if on {
-                fresh.push(r);
+        // Adding q raises energies: cluster keys fall (offer them), void keys rise (lazy).
+        let q = e.take::<true, false, true>(&mut voids);
+        e.on[q] = true;
+        e.splat(q, 1, |t| touched.push(t));
+        for t in touched.drain(..) {
+            if e.on[t] {
+                clusters.lower(t >> BLOCK_BITS, e.key::<false, false>(t));
             }
-        });
-        for r in fresh.drain(..) {
-            clusters.push(e.cluster_key(r));
         }
         if q == p {
             break;
@@ -334,41 +339,53 @@ pub fn rank(
             stats.relaxation_capped = true;
             break;
         }
-        if voids.len() > 3 * n + 4096 {
-            voids = e.queue(true, false);
-        }
-        if clusters.len() > 3 * n + 4096 {
-            clusters = e.queue(false, false);
-        }
     }
     drop(voids);
 
     let total = n as u64;
     let mut rank = vec![u32::MAX; n];
     let tick = 1u64 << 14;
-    // Phase I: remove clusters from a copy of the relaxed pattern (energies only fall).
-    let saved = e.texels.clone();
+    // Phase I: remove clusters from a copy of the relaxed pattern. Off texels are poisoned low
+    // (their cluster key −E is then huge); the relaxation's lower bounds stay lower bounds.
+    let relaxed = e.energy.clone();
+    for (en, &on) in e.energy.iter_mut().zip(&e.on) {
+        if !on {
+            *en -= POISON;
+        }
+    }
     for r in (0..m).rev() {
-        let p = e.take(&mut clusters, false, false);
+        let p = e.take::<false, false, false>(&mut clusters);
         rank[p] = r as u32;
-        e.toggle(p, false, |_, _| {});
+        e.splat(p, -1, |_| {});
+        e.energy[p] -= POISON;
     }
     drop(clusters);
-    e.texels = saved;
+    e.energy = relaxed;
     progress(m as u64, total);
 
     // Phases II and III: fill voids, then the tightest clusters of the off texels, whose keys
-    // are shifted by K(p) (a constant, so the same order, when every axis wraps).
-    let half = n / 2;
-    let mut voids = e.queue(true, false);
-    for r in m..n {
-        let phase3 = r >= half && e.k_field.is_some();
-        if r == half && phase3 {
-            voids = e.queue(true, true);
+    // are shifted by K(p) (a constant, so the same order, when every axis wraps). On texels are
+    // poisoned high.
+    for (en, &on) in e.energy.iter_mut().zip(&e.on) {
+        if on {
+            *en += POISON;
         }
-        let p = e.take(&mut voids, true, phase3);
+    }
+    let half = n / 2;
+    let open = e.k_field.is_some();
+    let mut voids = e.queue::<true, false, false>();
+    for r in m..n {
+        if r == half && open {
+            voids = e.queue::<true, true, false>();
+        }
+        let p = if r >= half && open {
+            e.take::<true, true, false>(&mut voids)
+        } else {
+            e.take::<true, false, false>(&mut voids)
+        };
         rank[p] = r as u32;
-        e.toggle(p, true, |_, _| {});
+        e.splat(p, 1, |_| {});
+        e.energy[p] += POISON;
         if (r as u64 + 1).is_multiple_of(tick) {
             progress(r as u64 + 1, total);
         }

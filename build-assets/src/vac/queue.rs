@@ -1,23 +1,19 @@
-//! The candidate queue of void and cluster: lazy keys in per-chunk binary heaps under a
-//! tournament tree of chunk minima.
+//! The candidate queue of void and cluster: block minima under a tournament tree.
 //!
-//! Texels are split into chunks of [`CHUNK`] consecutive indices, each with its own binary heap,
-//! so the heap a step works in (and the texel records it validates) stay cache-resident; the
-//! global minimum is the root of a small [`MinTree`] over the chunks' tops.
-//!
-//! Keys are *lazy*: a texel's queued key may be stale. The engine pushes a fresh key whenever a
-//! texel gets better (so some queued key is always at most the true key) and refreshes a stale key
-//! in place when it reaches the top ([`CandidateQueue::refresh_top`]). The popped minimum is
-//! exact: the root is at most every candidate's true key and, once validated, equals its own.
+//! Texels are grouped into blocks of [`BLOCK`] consecutive indices (a run along x). The
+//! [`MinTree`] holds one key per block, at most the smallest key among the block's candidates
+//! (a lazy lower bound), so its root bounds the best candidate of the whole mask. The engine
+//! recomputes the top block until its key is exact ([`BlockQueue::top`], [`BlockQueue::set`])
+//! and offers improved keys at once ([`BlockQueue::lower`]). A block's 8 texels share a cache
+//! line or two, and the tree has one leaf per 8 texels, so a refresh is cheap and no step
+//! rescans the volume.
 
 use super::tree::{ABSENT, MinTree};
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
-/// log2 of the chunk size.
-const CHUNK_BITS: u32 = 14;
-/// Texels per chunk (16 Ki: 256 KiB of heap, 256 KiB of texel records).
-pub const CHUNK: usize = 1 << CHUNK_BITS;
+/// log2 of the block size.
+pub const BLOCK_BITS: u32 = 3;
+/// Texels per block.
+pub const BLOCK: usize = 1 << BLOCK_BITS;
 
 /// Index of the texel a key refers to (the low 32 bits).
 #[inline(always)]
@@ -25,84 +21,39 @@ pub fn key_index(k: u128) -> usize {
     (k as u32) as usize
 }
 
-/// A min-queue of lazy `u128` keys.
-#[derive(Debug)]
-pub struct CandidateQueue {
-    heaps: Vec<BinaryHeap<Reverse<u128>>>,
-    top: MinTree,
-    len: usize,
+/// A min-queue over blocks of texels; the caller supplies each block's minimum key.
+#[derive(Clone, Debug)]
+pub struct BlockQueue {
+    tree: MinTree,
 }
 
-impl CandidateQueue {
-    /// A queue over `n` texels holding `keys`.
-    pub fn new(n: usize, keys: impl Iterator<Item = u128>) -> Self {
-        let chunks = n.div_ceil(CHUNK).max(1);
-        let mut lists: Vec<Vec<Reverse<u128>>> = vec![Vec::new(); chunks];
-        let mut len = 0;
-        for k in keys {
-            lists[key_index(k) >> CHUNK_BITS].push(Reverse(k));
-            len += 1;
-        }
-        let heaps: Vec<BinaryHeap<Reverse<u128>>> =
-            lists.into_iter().map(BinaryHeap::from).collect();
-        let top = MinTree::new(
-            heaps
-                .iter()
-                .map(|h| h.peek().map_or(ABSENT, |r| r.0))
-                .collect::<Vec<_>>()
-                .into_iter(),
-        );
-        Self { heaps, top, len }
-    }
-
-    /// The smallest queued key, or `None` when empty.
-    #[inline]
-    pub fn peek(&self) -> Option<u128> {
-        let k = self.top.min();
-        (k != ABSENT).then_some(k)
-    }
-
-    /// Number of queued keys (stale ones included).
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
-    #[inline]
-    fn sync(&mut self, c: usize) {
-        let k = self.heaps[c].peek().map_or(ABSENT, |r| r.0);
-        self.top.set(c, k);
-    }
-
-    /// Queues a key.
-    #[inline]
-    pub fn push(&mut self, k: u128) {
-        let c = key_index(k) >> CHUNK_BITS;
-        self.heaps[c].push(Reverse(k));
-        self.len += 1;
-        if self.heaps[c].peek() == Some(&Reverse(k)) {
-            self.top.set(c, k);
+impl BlockQueue {
+    /// A queue over `n` texels; `block_min(b)` is the smallest candidate key in block `b`
+    /// ([`ABSENT`] when the block holds no candidate).
+    pub fn new(n: usize, block_min: impl Fn(usize) -> u128) -> Self {
+        let blocks = n.div_ceil(BLOCK).max(1);
+        Self {
+            tree: MinTree::new((0..blocks).map(block_min)),
         }
     }
 
-    /// Removes the smallest key (the one [`peek`](Self::peek) returned).
+    /// The block holding the smallest key, and that key.
     #[inline]
-    pub fn pop(&mut self) {
-        let Some(k) = self.peek() else { return };
-        let c = key_index(k) >> CHUNK_BITS;
-        self.heaps[c].pop();
-        self.len -= 1;
-        self.sync(c);
+    pub fn top(&self) -> Option<(usize, u128)> {
+        let k = self.tree.min();
+        (k != ABSENT).then(|| (key_index(k) >> BLOCK_BITS, k))
     }
 
-    /// Replaces the smallest key by `fresh` (a larger key of the same texel) in place.
+    /// Offers `key` as a new minimum of block `b` (kept only if smaller).
     #[inline]
-    pub fn refresh_top(&mut self, fresh: u128) {
-        let Some(k) = self.peek() else { return };
-        let c = key_index(k) >> CHUNK_BITS;
-        if let Some(mut top) = self.heaps[c].peek_mut() {
-            *top = Reverse(fresh);
-        }
-        self.sync(c);
+    pub fn lower(&mut self, b: usize, key: u128) {
+        self.tree.lower(b, key);
+    }
+
+    /// Sets the minimum key of block `b`.
+    #[inline]
+    pub fn set(&mut self, b: usize, key: u128) {
+        self.tree.set(b, key);
     }
 }
 
@@ -112,19 +63,34 @@ mod tests {
     use crate::rng::SplitMix64;
 
     #[test]
-    fn pops_in_order() {
+    fn best_tracks_block_minima() {
         let mut rng = SplitMix64::new(2);
-        let n = 3 * CHUNK + 17;
-        let keys: Vec<u128> = (0..n)
+        let n = 3 * BLOCK + 5;
+        let mut keys: Vec<u128> = (0..n)
             .map(|i| (rng.next_u64() as u128) << 64 | i as u128)
             .collect();
-        let mut q = CandidateQueue::new(n, keys.iter().copied());
-        let mut sorted = keys.clone();
-        sorted.sort_unstable();
-        for &k in &sorted {
-            assert_eq!(q.peek(), Some(k));
-            q.pop();
+        let block_min = |keys: &[u128], b: usize| {
+            keys[b * BLOCK..((b + 1) * BLOCK).min(n)]
+                .iter()
+                .copied()
+                .min()
+                .unwrap_or(ABSENT)
+        };
+        let mut q = BlockQueue::new(n, |b| block_min(&keys, b));
+        for _ in 0..200 {
+            let min = *keys.iter().min().unwrap();
+            assert_eq!(q.top(), Some((key_index(min) / BLOCK, min)));
+            let i = rng.below(n as u64) as usize;
+            keys[i] = (rng.next_u64() as u128) << 64 | i as u128;
+            q.set(i / BLOCK, block_min(&keys, i / BLOCK));
         }
-        assert_eq!(q.peek(), None);
+        // Lowering keeps only smaller keys.
+        let (b, k) = q.top().unwrap();
+        q.lower(b, k + 1);
+        assert_eq!(q.top(), Some((b, k)));
+        let other = (b + 1) % n.div_ceil(BLOCK);
+        let smaller = ((k >> 32) - 1) << 32 | (other * BLOCK) as u128;
+        q.lower(other, smaller);
+        assert_eq!(q.top(), Some((other, smaller)));
     }
 }

@@ -52,6 +52,18 @@ impl MinTree {
     }
 }
 
+impl MinTree {
+    /// Lowers the key of texel `i` to `key` if that is smaller (a no-op otherwise).
+    #[inline]
+    pub fn lower(&mut self, i: usize, key: u128) {
+        let mut at = self.leaves + i;
+        while at >= 1 && self.nodes[at] > key {
+            self.nodes[at] = key;
+            at >>= 1;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
