@@ -52,6 +52,39 @@ pub fn derive_seed(seed: u64, index: u64) -> u64 {
     mix64(seed ^ mix64(index.wrapping_add(0x632B_E59B_D9B4_E019)))
 }
 
+/// A seeded bijection of `u32`: distinct inputs give distinct outputs, which look random.
+///
+/// Void and cluster breaks energy ties by the lowest value of this function of the texel index,
+/// computed when needed instead of stored (a table of `n` ranks would cost a cache miss per
+/// lookup). Every step (xor with a constant, multiply by an odd constant, xor-shift) is
+/// invertible on `u32`, so the ranks are distinct for every mask up to 2^32 texels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TieRank {
+    key: u32,
+    mul1: u32,
+    mul2: u32,
+}
+
+impl TieRank {
+    /// A bijection drawn from `rng` (three draws).
+    pub fn new(rng: &mut SplitMix64) -> Self {
+        Self {
+            key: rng.next_u64() as u32,
+            mul1: rng.next_u64() as u32 | 1,
+            mul2: rng.next_u64() as u32 | 1,
+        }
+    }
+
+    /// The rank of index `i`.
+    #[inline(always)]
+    pub fn of(&self, i: u32) -> u32 {
+        let mut x = (i ^ self.key).wrapping_mul(self.mul1);
+        x ^= x >> 16;
+        x = x.wrapping_mul(self.mul2);
+        x ^ (x >> 15)
+    }
+}
+
 /// A uniformly random permutation of `0..n` (Fisher–Yates), as `u32`.
 pub fn permutation(n: usize, rng: &mut SplitMix64) -> Vec<u32> {
     let mut p: Vec<u32> = (0..n as u32).collect();
@@ -65,6 +98,15 @@ pub fn permutation(n: usize, rng: &mut SplitMix64) -> Vec<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tie_ranks_are_distinct() {
+        let t = TieRank::new(&mut SplitMix64::new(3));
+        let mut seen: Vec<u32> = (0..1 << 16).map(|i| t.of(i)).collect();
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), 1 << 16);
+    }
 
     #[test]
     fn below_is_in_range_and_covers_it() {

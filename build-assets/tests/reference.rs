@@ -4,7 +4,7 @@
 //! Energies are the same fixed-point quantisation the engine uses (`kernel::quantize`), so sums
 //! are exact and the comparison can demand identical rankings.
 
-use build_assets::rng::{SplitMix64, permutation};
+use build_assets::rng::{SplitMix64, TieRank, permutation};
 use build_assets::vac::kernel::{gaussian, quantize};
 use build_assets::vac::{self, Axis, DEFAULT_CUTOFF, Footprint, Group, VacConfig};
 
@@ -68,7 +68,8 @@ fn reference_rank(cfg: &VacConfig) -> Vec<u32> {
         coords,
     };
     let mut rng = SplitMix64::new(cfg.seed);
-    let tie = permutation(n, &mut rng);
+    let tie_rank = TieRank::new(&mut rng);
+    let tie: Vec<u32> = (0..n as u32).map(|i| tie_rank.of(i)).collect();
     let m = ((cfg.initial_density * n as f64).round() as usize).clamp(1, (n / 2).max(1));
     let order = permutation(n, &mut rng);
     let mut on = vec![false; n];

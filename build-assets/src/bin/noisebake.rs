@@ -28,9 +28,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Generate every texture of a spec file into DIR/<name>.npy (and PNG slices).
+    /// Generate every texture of a spec file into `DIR/<name>.npy` (and PNG slices).
     Bake {
-        /// The spec file ([[texture]] tables).
+        /// The spec file (`[[texture]]` tables).
         spec: PathBuf,
         /// Output directory.
         #[arg(long)]
