@@ -74,13 +74,26 @@ pub struct Cache {
     pub warnings: Vec<String>,
 }
 
-/// Finds the workspace target directory the way cxx-build does: `CARGO_TARGET_DIR`, else the
-/// ancestor of `OUT_DIR` (`…/target/<profile>/build/<pkg>/out`) that holds the profile dirs.
+/// Finds the workspace target directory: `CARGO_TARGET_DIR`, else the ancestor of `OUT_DIR`
+/// (`…/target/<profile>/build/<pkg>/out`) that holds the profile dirs; then, if that directory
+/// lies inside another directory Cargo tagged with `CACHEDIR.TAG`, the outermost such one. So
+/// builds nested in the workspace target (trybuild sets `CARGO_TARGET_DIR` to
+/// `target/tests/trybuild`) share the workspace's cache instead of baking everything again.
 pub fn target_dir(out_dir: Option<&Path>) -> Option<PathBuf> {
-    if let Some(t) = std::env::var_os("CARGO_TARGET_DIR") {
-        return Some(PathBuf::from(t));
-    }
-    let out = out_dir?;
+    let base = match std::env::var_os("CARGO_TARGET_DIR") {
+        Some(t) => PathBuf::from(t),
+        None => profile_parent(out_dir?)?,
+    };
+    let outer = base
+        .ancestors()
+        .filter(|a| a.join("CACHEDIR.TAG").is_file())
+        .last()
+        .map(Path::to_path_buf);
+    Some(outer.unwrap_or(base))
+}
+
+/// The directory that holds the profile dirs above `out` (`…/<profile>/build/<pkg>/out`).
+fn profile_parent(out: &Path) -> Option<PathBuf> {
     // out -> <pkg-hash> -> build -> <profile> (-> <triple>) -> target
     let mut p = out.to_path_buf();
     while let Some(parent) = p.parent() {

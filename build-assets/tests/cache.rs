@@ -213,3 +213,32 @@ fn bake_errors_name_file_line_and_key() {
         .to_string();
     assert!(e.contains("missing.toml"), "{e}");
 }
+
+#[test]
+fn nested_target_dirs_share_the_outermost_tagged_cache() {
+    let root = tmp("nested_target");
+    let target = root.join("target");
+    let nested = target.join("tests/trybuild/x86_64-unknown-linux-gnu");
+    let out = nested.join("debug/build/demo-0123/out");
+    std::fs::create_dir_all(&out).unwrap();
+    if std::env::var_os("CARGO_TARGET_DIR").is_some() {
+        // The variable decides the base; the tagged-ancestor rule is checked below through it
+        // only when it is unset (as under plain `cargo test`).
+        eprintln!("CARGO_TARGET_DIR is set: checking the OUT_DIR rule is not possible here");
+        return;
+    }
+    let expect = |dir: &std::path::Path| Some(dir.to_path_buf());
+    // Untagged: the directory named `target` above the profile dirs.
+    let plain = target.join("debug/build/demo-0123/out");
+    std::fs::create_dir_all(&plain).unwrap();
+    assert_eq!(
+        build_assets::cache::target_dir(Some(&plain)),
+        expect(&target)
+    );
+    // Tagged at two levels (Cargo tags every target dir it creates): the outermost wins, so a
+    // nested trybuild build reads the workspace's cache.
+    let tag = "Signature: 8a477f597d28d172789f06886806bc55";
+    std::fs::write(nested.join("CACHEDIR.TAG"), tag).unwrap();
+    std::fs::write(target.join("CACHEDIR.TAG"), tag).unwrap();
+    assert_eq!(build_assets::cache::target_dir(Some(&out)), expect(&target));
+}
