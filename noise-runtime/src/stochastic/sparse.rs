@@ -35,6 +35,15 @@ pub(crate) fn impulse(h: u32, i: u32) -> ([f32; 3], f32) {
     )
 }
 
+/// ξ rotated by the cell hash `h` (Cranley–Patterson) on the 2^-24 grid, in `[0, 1)`: integer
+/// addition modulo 2^24 instead of a float compare-and-subtract, whose branch would mispredict
+/// on half the cells.
+#[inline(always)]
+pub(crate) fn rotate(xi: f32, h: u32) -> f32 {
+    let u = ((xi * 16_777_216.0) as u32).wrapping_add(h >> 8) & 0x00ff_ffff;
+    u as f32 * (1.0 / 16_777_216.0)
+}
+
 #[inline(always)]
 fn r2(f: [f32; 3], q: [f32; 3]) -> f32 {
     let x = f[0] - q[0];
@@ -123,11 +132,7 @@ pub fn sparse_conv3_stochastic(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
     let nf = n as f32;
     let mut sum = 0.0;
     cells(p, seed, |h, d| {
-        let mut x = xi + (h >> 8) as i32 as f32 * (1.0 / 16_777_216.0);
-        if x >= 1.0 {
-            x -= 1.0;
-        }
-        let i = ((nf * sqrt_fast(x)) as u32).min(n - 1);
+        let i = ((nf * sqrt_fast(rotate(xi, h))) as u32).min(n - 1);
         let (q, s) = impulse(h, i);
         sum += s * kernel(r2(d, q));
     });
