@@ -27,8 +27,10 @@
 //! stored, so a block's minimum reads just its energies (one pass for the lowest score, a
 //! second for the lowest tie rank among the texels that reach it).
 //!
-//! Measured (single thread, `cargo bench -p build-assets --bench vac`): blue2d 64² 3 ms, STBN
-//! 64×64×16 0.05 s, STBN 128×128×64 1.4–1.5 s, 2D×1D×1D 64×64×16×16 1.5–1.6 s.
+//! Measured (single thread, `cargo bench -p build-assets --bench vac`): blue2d 64² 2.5 ms, STBN
+//! 64×64×16 49 ms, STBN 128×128×64 1.38 s, 2D×1D×1D 64×64×16×16 1.48 s. The large sizes are
+//! bound by cache misses: their energies (8 MB) do not fit in L2, and each splat reaches 15
+//! slices along t.
 
 use super::kernel::{Axis, Footprint, GroupFootprint};
 use super::queue::{BLOCK, BLOCK_BITS, BlockQueue, key_index};
