@@ -20,25 +20,25 @@ fn blur(img: &[f64], w: usize, h: usize, taps: &[f64]) -> Vec<f64> {
     if taps.len() == 1 {
         return img.to_vec();
     }
+    let along_x = blur_axis(img, w, h, taps, true);
+    blur_axis(&along_x, w, h, taps, false)
+}
+
+/// One wrapped 1D pass of `taps` (centred) along x or along y.
+fn blur_axis(img: &[f64], w: usize, h: usize, taps: &[f64], along_x: bool) -> Vec<f64> {
     let r = (taps.len() / 2) as isize;
-    let mut tmp = vec![0.0; w * h];
-    for y in 0..h {
-        for x in 0..w {
-            let mut s = 0.0;
-            for (k, &f) in taps.iter().enumerate() {
-                let xx = (x as isize + k as isize - r).rem_euclid(w as isize) as usize;
-                s += f * img[y * w + xx];
-            }
-            tmp[y * w + x] = s;
-        }
-    }
     let mut out = vec![0.0; w * h];
     for y in 0..h {
         for x in 0..w {
             let mut s = 0.0;
             for (k, &f) in taps.iter().enumerate() {
-                let yy = (y as isize + k as isize - r).rem_euclid(h as isize) as usize;
-                s += f * tmp[yy * w + x];
+                let o = k as isize - r;
+                let at = if along_x {
+                    y * w + (x as isize + o).rem_euclid(w as isize) as usize
+                } else {
+                    (y as isize + o).rem_euclid(h as isize) as usize * w + x
+                };
+                s += f * img[at];
             }
             out[y * w + x] = s;
         }
