@@ -1,5 +1,5 @@
 //! Void-and-cluster generation time at the sizes the engine issue names (single thread), with
-//! the kernel truncation bound printed beside each: the speed and the error it was bought with.
+//! the kernel's truncation and rounding bounds printed beside each: the speed and the error it was bought with.
 //!
 //! `cargo bench -p build-assets --bench vac`
 
@@ -51,12 +51,13 @@ fn bench(c: &mut Criterion) {
             .groups
             .iter()
             .flat_map(|g| &g.weights)
-            .map(|&w| w as f64 / 4294967296.0)
+            .map(|&w| w as f64 / fp.scale)
             .sum();
         eprintln!(
-            "{name}: footprint {} entries; truncation error ≤ {:.2e} of a full neighbourhood's energy (exact reference: identical ranks where nothing is dropped)",
+            "{name}: footprint {} entries; truncation error ≤ {:.2e} and rounding error ≤ {:.2e} of a full neighbourhood's energy (exact reference: identical ranks where nothing is dropped)",
             fp.len(),
-            fp.dropped_weight() / full
+            fp.dropped_weight() / full,
+            fp.rounding_error() / full
         );
         g.sample_size(samples)
             .measurement_time(Duration::from_secs(if samples == 10 { 60 } else { 5 }));

@@ -57,22 +57,49 @@ pub fn derive_seed(seed: u64, index: u64) -> u64 {
 /// Void and cluster breaks energy ties by the lowest value of this function of the texel index,
 /// computed when needed instead of stored (a table of `n` ranks would cost a cache miss per
 /// lookup). Every step (xor with a constant, multiply by an odd constant, xor-shift) is
-/// invertible on `u32`, so the ranks are distinct for every mask up to 2^32 texels.
+/// invertible on `u32`, so the ranks are distinct for every mask up to 2^32 texels, and
+/// [`TieRank::index`] maps a rank back to its index (the engine's queue keys carry only the rank).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TieRank {
     key: u32,
     mul1: u32,
     mul2: u32,
+    inv1: u32,
+    inv2: u32,
+}
+
+/// The inverse of an odd `m` modulo 2^32, by Newton's iteration (each step doubles the number of
+/// correct low bits; `m · m ≡ 1 (mod 8)` gives the first three).
+fn inverse_mod_2_32(m: u32) -> u32 {
+    let mut inv = m;
+    for _ in 0..4 {
+        inv = inv.wrapping_mul(2u32.wrapping_sub(m.wrapping_mul(inv)));
+    }
+    inv
 }
 
 impl TieRank {
     /// A bijection drawn from `rng` (three draws).
     pub fn new(rng: &mut SplitMix64) -> Self {
+        let key = rng.next_u64() as u32;
+        let mul1 = rng.next_u64() as u32 | 1;
+        let mul2 = rng.next_u64() as u32 | 1;
         Self {
-            key: rng.next_u64() as u32,
-            mul1: rng.next_u64() as u32 | 1,
-            mul2: rng.next_u64() as u32 | 1,
+            key,
+            mul1,
+            mul2,
+            inv1: inverse_mod_2_32(mul1),
+            inv2: inverse_mod_2_32(mul2),
         }
+    }
+
+    /// The index whose rank is `r`: the inverse of [`TieRank::of`].
+    #[inline(always)]
+    pub fn index(&self, r: u32) -> u32 {
+        let mut x = r ^ (r >> 15) ^ (r >> 30);
+        x = x.wrapping_mul(self.inv2);
+        x ^= x >> 16;
+        x.wrapping_mul(self.inv1) ^ self.key
     }
 
     /// The rank of index `i`.
@@ -83,6 +110,19 @@ impl TieRank {
         x = x.wrapping_mul(self.mul2);
         x ^ (x >> 15)
     }
+}
+
+/// `m` distinct indices drawn uniformly from `0..n`, in draw order: the first `m` steps of a
+/// forward Fisher–Yates shuffle, so a draw costs one random number however large `n` is.
+pub fn sample_distinct(n: usize, m: usize, rng: &mut SplitMix64) -> Vec<u32> {
+    let mut p: Vec<u32> = (0..n as u32).collect();
+    let m = m.min(n);
+    for i in 0..m {
+        let j = i + rng.below((n - i) as u64) as usize;
+        p.swap(i, j);
+    }
+    p.truncate(m);
+    p
 }
 
 /// A uniformly random permutation of `0..n` (Fisher–Yates), as `u32`.
@@ -109,6 +149,19 @@ mod tests {
     }
 
     #[test]
+    fn index_inverts_the_rank() {
+        let mut rng = SplitMix64::new(9);
+        for _ in 0..8 {
+            let t = TieRank::new(&mut rng);
+            for _ in 0..1000 {
+                let i = rng.next_u64() as u32;
+                assert_eq!(t.index(t.of(i)), i);
+                assert_eq!(t.of(t.index(i)), i);
+            }
+        }
+    }
+
+    #[test]
     fn below_is_in_range_and_covers_it() {
         let mut r = SplitMix64::new(1);
         let mut seen = [0u32; 7];
@@ -116,6 +169,23 @@ mod tests {
             seen[r.below(7) as usize] += 1;
         }
         assert!(seen.iter().all(|&c| (850..1150).contains(&c)), "{seen:?}");
+    }
+
+    #[test]
+    fn samples_are_distinct_and_uniform() {
+        let mut r = SplitMix64::new(4);
+        let mut hits = [0u32; 10];
+        for _ in 0..3000 {
+            let s = sample_distinct(10, 3, &mut r);
+            let mut d = s.clone();
+            d.sort_unstable();
+            d.dedup();
+            assert_eq!(d.len(), 3);
+            s.iter().for_each(|&i| hits[i as usize] += 1);
+        }
+        // Each index is drawn with probability 3/10: 900 expected, σ ≈ 25.
+        assert!(hits.iter().all(|&h| (800..1000).contains(&h)), "{hits:?}");
+        assert_eq!(sample_distinct(4, 9, &mut r).len(), 4);
     }
 
     #[test]

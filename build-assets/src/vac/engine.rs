@@ -20,30 +20,35 @@
 //! its key is exact, so a step pays for the three or four blocks that reach the top, not for
 //! the ≈ 40 it touched. In phases I–III energies move one way only, so every change makes
 //! candidates worse. During relaxation energies move both ways; a change that improves a
-//! candidate lowers its block's key at once (`BlockQueue::lower`).
+//! candidate lowers its block's key at once (`BlockQueue::lower`), one offer per block a run of
+//! changed texels crosses.
 //!
-//! Memory: the splat writes only the `i64` energy array. In phases I–III the texels that are not
-//! candidates carry a `POISON` offset instead of an on/off test, and tie ranks are hashed, not
-//! stored, so a block's minimum reads just its energies (one pass for the lowest score, a
-//! second for the lowest tie rank among the texels that reach it).
+//! Memory: the splat writes only the energy array, `i32` in fixed point
+//! ([`super::kernel::energy_scale`]). In phases I–III the texels that are not candidates carry a
+//! `POISON` offset instead of an on/off test, and tie ranks are hashed, not stored, so a block's
+//! minimum reads just its energies (one pass for the lowest score, a second for the lowest tie
+//! rank among the texels that reach it). A queue key is the score and the tie rank in one `u64`;
+//! the rank names the texel ([`TieRank::index`]), so the tree is half the size of one that also
+//! carries the index.
 //!
-//! Measured (single thread, `cargo bench -p build-assets --bench vac`): blue2d 64² 2.5 ms, STBN
-//! 64×64×16 49 ms, STBN 128×128×64 1.38 s, 2D×1D×1D 64×64×16×16 1.48 s. The large sizes are
-//! bound by cache misses: their energies (8 MB) do not fit in L2, and each splat reaches 15
-//! slices along t.
+//! Measured (single thread, `cargo bench -p build-assets --bench vac`): blue2d 64² 2.0 ms, STBN
+//! 64×64×16 37 ms, STBN 128×128×64 0.96 s, 2D×1D×1D 64×64×16×16 1.09 s. The large sizes are
+//! bound by cache misses: their energies (4 MB) do not fit in L2, and each splat reaches 15
+//! slices along t. (With `i64` energies and `u128` keys: 2.5 ms, 49 ms, 1.38 s, 1.48 s. Padding
+//! runs to whole SSE2 vectors, or blocks of 16 or 64 texels, measured slower.)
 
-use super::kernel::{Axis, Footprint, GroupFootprint};
-use super::queue::{BLOCK, BLOCK_BITS, BlockQueue, key_index};
+use super::kernel::{Axis, Energy, Footprint, GroupFootprint};
+use super::queue::{BLOCK, BLOCK_BITS, BlockQueue};
 use super::tree::ABSENT;
-use crate::rng::{SplitMix64, TieRank, permutation};
+use crate::rng::{SplitMix64, TieRank, sample_distinct};
 
 const INVALID: u32 = u32::MAX;
 
 /// Energy offset that takes a texel out of the running in phases I–III: added to texels that are
 /// on while voids are sought, subtracted from texels that are off while clusters are. Any real
-/// energy is below `2^52` (a footprint's total weight in fixed point), so poisoned and real keys
-/// never mix and the sums cannot overflow.
-const POISON: i64 = 1 << 62;
+/// energy is below `2^29` ([`super::kernel::energy_scale`]), so poisoned and real keys never mix
+/// and no sum leaves `i32`.
+const POISON: Energy = 1 << 30;
 
 /// Receives `(done, total)` texel counts as ranking advances.
 pub type ProgressFn<'a> = &'a mut dyn FnMut(u64, u64);
@@ -70,13 +75,13 @@ pub(crate) struct Engine<'f> {
     sizes: Vec<usize>,
     strides: Vec<usize>,
     /// Fixed-point energy of each texel (plus or minus [`POISON`] in phases I–III).
-    energy: Vec<i64>,
+    energy: Vec<Energy>,
     /// Tie-break rank of each texel, a bijection of its index.
     tie: TieRank,
     /// Whether each texel is on (kept during the initial pattern and relaxation).
     on: Vec<bool>,
     /// `K(p)` when axes are open (it varies near borders); `None` when it is constant.
-    k_field: Option<Vec<i64>>,
+    k_field: Option<Vec<Energy>>,
     /// Per group: its footprint as runs along x when the group contains axis 0, else empty.
     spans: Vec<Vec<Span>>,
 }
@@ -119,14 +124,15 @@ fn spans_of(g: &GroupFootprint) -> Vec<Span> {
     spans
 }
 
-fn bias(key: i64) -> u64 {
-    (key as u64) ^ (1 << 63)
+/// A score as an unsigned number of the same order.
+fn bias(score: Energy) -> u32 {
+    (score as u32) ^ (1 << 31)
 }
 
-/// A queue key: energy first, then tie rank; the texel index rides in the low bits.
+/// A queue key: the score, then the tie rank (which names the texel: [`TieRank::index`]).
 #[inline(always)]
-fn pack(key: i64, tie: u32, idx: usize) -> u128 {
-    (bias(key) as u128) << 64 | (tie as u128) << 32 | idx as u128
+fn pack(score: Energy, tie: u32) -> u64 {
+    (bias(score) as u64) << 32 | tie as u64
 }
 
 impl<'f> Engine<'f> {
@@ -208,7 +214,7 @@ impl<'f> Engine<'f> {
     }
 
     /// Visits `(q, weight)` for every footprint entry of `p` that lands inside the mask.
-    fn for_each(&self, p: usize, mut f: impl FnMut(usize, i64)) {
+    fn for_each(&self, p: usize, mut f: impl FnMut(usize, Energy)) {
         let coord = self.coords(p);
         for g in &self.fp.groups {
             self.for_group(p, &coord, g, &mut f);
@@ -222,7 +228,7 @@ impl<'f> Engine<'f> {
         p: usize,
         coord: &[usize; 8],
         g: &GroupFootprint,
-        mut f: impl FnMut(usize, i64),
+        mut f: impl FnMut(usize, Energy),
     ) {
         let mut base = p;
         for &a in &g.axes {
@@ -270,12 +276,13 @@ impl<'f> Engine<'f> {
         }
     }
 
-    /// Adds `sign ·` the footprint of `p` to the energy field; `touched(q)` sees each texel.
+    /// Adds `sign ·` the footprint of `p` to the energy field; `touched(lo, hi)` sees each run of
+    /// texels `lo..hi` it changed.
     ///
     /// Groups that contain the x axis are walked as runs along x ([`Span`]): away from the x
     /// border a run is one contiguous slice of energies (no wrap lookups, vectorised adds).
     #[inline(always)]
-    fn splat(&mut self, p: usize, sign: i64, mut touched: impl FnMut(usize)) {
+    fn splat(&mut self, p: usize, sign: Energy, mut touched: impl FnMut(usize, usize)) {
         let coord = self.coords(p);
         // Split borrows: the footprint walk reads tables, the closure writes energies.
         let mut energy = std::mem::take(&mut self.energy);
@@ -283,7 +290,7 @@ impl<'f> Engine<'f> {
             if spans.is_empty() {
                 self.for_group(p, &coord, g, |q, w| {
                     energy[q] += sign * w;
-                    touched(q);
+                    touched(q, q + 1);
                 });
                 continue;
             }
@@ -318,7 +325,7 @@ impl<'f> Engine<'f> {
                     } else {
                         e.iter_mut().zip(w).for_each(|(e, &w)| *e -= w);
                     }
-                    (at..at + w.len()).for_each(&mut touched);
+                    touched(at, at + w.len());
                 } else {
                     for (i, &w) in w.iter().enumerate() {
                         let v =
@@ -326,7 +333,7 @@ impl<'f> Engine<'f> {
                         if v != INVALID {
                             let q = row + v as usize;
                             energy[q] += sign * w;
-                            touched(q);
+                            touched(q, q + 1);
                         }
                     }
                 }
@@ -338,7 +345,7 @@ impl<'f> Engine<'f> {
     /// Score of texel `p` as a void (lowest energy first; in phase III with open axes lowest
     /// `F(p) − K(p)`) or as a cluster (highest energy first). Lower is better.
     #[inline(always)]
-    fn score<const VOIDS: bool, const PHASE3: bool>(&self, p: usize) -> i64 {
+    fn score<const VOIDS: bool, const PHASE3: bool>(&self, p: usize) -> Energy {
         let e = self.energy[p];
         if !VOIDS {
             -e
@@ -349,48 +356,80 @@ impl<'f> Engine<'f> {
         }
     }
 
-    /// Smallest key in block `b`: poisoned texels lose by their offset (phases I–III), or, with
-    /// `CHECK_ON`, texels of the wrong state are skipped (relaxation). Two passes: the lowest
-    /// score (a plain `i64` minimum over the block's energies), then the lowest tie rank among
-    /// the texels that reach it (almost always one).
+    /// Lowest score among texels `lo..hi` (`Energy::MAX` if none is a candidate): poisoned
+    /// texels lose by their offset (phases I–III), or, with `CHECK_ON`, texels of the wrong state
+    /// are skipped (relaxation).
     #[inline(always)]
-    fn block_min<const VOIDS: bool, const PHASE3: bool, const CHECK_ON: bool>(
+    fn range_score<const VOIDS: bool, const PHASE3: bool, const CHECK_ON: bool>(
         &self,
-        b: usize,
-    ) -> u128 {
-        let lo = b << BLOCK_BITS;
-        let hi = (lo + BLOCK).min(self.energy.len());
-        let score = |p: usize| {
-            if CHECK_ON && self.on[p] == VOIDS {
-                i64::MAX
-            } else {
-                self.score::<VOIDS, PHASE3>(p)
-            }
-        };
-        let mut best = i64::MAX;
+        lo: usize,
+        hi: usize,
+    ) -> Energy {
+        let mut best = Energy::MAX;
         for p in lo..hi {
-            best = best.min(score(p));
+            best = best.min(self.candidate_score::<VOIDS, PHASE3, CHECK_ON>(p));
         }
-        if best == i64::MAX {
+        best
+    }
+
+    #[inline(always)]
+    fn candidate_score<const VOIDS: bool, const PHASE3: bool, const CHECK_ON: bool>(
+        &self,
+        p: usize,
+    ) -> Energy {
+        if CHECK_ON && self.on[p] == VOIDS {
+            Energy::MAX
+        } else {
+            self.score::<VOIDS, PHASE3>(p)
+        }
+    }
+
+    /// Smallest key among texels `lo..hi` whose lowest score is `best`: the lowest tie rank
+    /// among the texels that reach it (almost always one).
+    #[inline(always)]
+    fn range_key<const VOIDS: bool, const PHASE3: bool, const CHECK_ON: bool>(
+        &self,
+        lo: usize,
+        hi: usize,
+        best: Energy,
+    ) -> u64 {
+        if best == Energy::MAX {
             return ABSENT;
         }
         let mut key = ABSENT;
         for p in lo..hi {
-            if score(p) == best {
-                key = key.min(pack(best, self.tie.of(p as u32), p));
+            if self.candidate_score::<VOIDS, PHASE3, CHECK_ON>(p) == best {
+                key = key.min(pack(best, self.tie.of(p as u32)));
             }
         }
         key
     }
 
-    /// Offers texel `t`'s key to its block (relaxation, after a change that improved it). The
-    /// score alone settles most offers; the tie rank is hashed only when it could matter.
+    /// Smallest key in block `b`: two passes, a plain minimum of the scores, then the tie.
     #[inline(always)]
-    fn offer<const VOIDS: bool>(&self, q: &mut BlockQueue, t: usize) {
-        let b = t >> BLOCK_BITS;
-        let score = self.score::<VOIDS, false>(t);
-        if bias(score) <= (q.leaf(b) >> 64) as u64 {
-            q.lower(b, pack(score, self.tie.of(t as u32), t));
+    fn block_min<const VOIDS: bool, const PHASE3: bool, const CHECK_ON: bool>(
+        &self,
+        b: usize,
+    ) -> u64 {
+        let lo = b << BLOCK_BITS;
+        let hi = (lo + BLOCK).min(self.energy.len());
+        let best = self.range_score::<VOIDS, PHASE3, CHECK_ON>(lo, hi);
+        self.range_key::<VOIDS, PHASE3, CHECK_ON>(lo, hi, best)
+    }
+
+    /// Offers the candidates among texels `lo..hi` to their blocks (relaxation, after a change
+    /// that improved them): per block the run crosses, the lowest score settles most offers
+    /// against the block's key; the tie is looked up only when it could win.
+    #[inline(always)]
+    fn offer<const VOIDS: bool>(&self, q: &mut BlockQueue, mut lo: usize, hi: usize) {
+        while lo < hi {
+            let end = hi.min((lo | (BLOCK - 1)) + 1);
+            let b = lo >> BLOCK_BITS;
+            let best = self.range_score::<VOIDS, false, true>(lo, end);
+            if best != Energy::MAX && bias(best) <= (q.leaf(b) >> 32) as u32 {
+                q.lower(b, self.range_key::<VOIDS, false, true>(lo, end, best));
+            }
+            lo = end;
         }
     }
 
@@ -409,10 +448,12 @@ impl<'f> Engine<'f> {
         q: &mut BlockQueue,
     ) -> usize {
         loop {
-            let (b, k) = q.top().expect("the queue holds a candidate");
+            let k = q.top().expect("the queue holds a candidate");
+            let p = self.tie.index(k as u32) as usize;
+            let b = p >> BLOCK_BITS;
             let m = self.block_min::<VOIDS, PHASE3, CHECK_ON>(b);
             if m == k {
-                return key_index(k);
+                return p;
             }
             debug_assert!(m > k, "a lazy key overestimated its block");
             q.set(b, m);
@@ -442,11 +483,11 @@ pub fn rank(
     let m = ((initial_density * n as f64).round() as usize).clamp(1, (n / 2).max(1));
     stats.initial_points = m;
 
-    // Initial binary pattern: the first m texels of a random permutation (no duplicates).
-    let order = permutation(n, &mut rng);
-    for &p in &order[..m] {
+    // Initial binary pattern: m distinct random texels (no duplicates).
+    let order = sample_distinct(n, m, &mut rng);
+    for &p in &order {
         e.on[p as usize] = true;
-        e.splat(p as usize, 1, |_| {});
+        e.splat(p as usize, 1, |_, _| {});
     }
     drop(order);
 
@@ -459,20 +500,16 @@ pub fn rank(
         // Removing p lowers energies: void keys fall (offer them), cluster keys rise (lazy).
         let p = e.take::<false, false, true>(&mut clusters);
         e.on[p] = false;
-        e.splat(p, -1, |t| touched.push(t));
-        for t in touched.drain(..) {
-            if !e.on[t] {
-                e.offer::<true>(&mut voids, t);
-            }
+        e.splat(p, -1, |lo, hi| touched.push((lo, hi)));
+        for (lo, hi) in touched.drain(..) {
+            e.offer::<true>(&mut voids, lo, hi);
         }
         // Adding q raises energies: cluster keys fall (offer them), void keys rise (lazy).
         let q = e.take::<true, false, true>(&mut voids);
         e.on[q] = true;
-        e.splat(q, 1, |t| touched.push(t));
-        for t in touched.drain(..) {
-            if e.on[t] {
-                e.offer::<false>(&mut clusters, t);
-            }
+        e.splat(q, 1, |lo, hi| touched.push((lo, hi)));
+        for (lo, hi) in touched.drain(..) {
+            e.offer::<false>(&mut clusters, lo, hi);
         }
         if q == p {
             break;
@@ -499,7 +536,7 @@ pub fn rank(
     for r in (0..m).rev() {
         let p = e.take::<false, false, false>(&mut clusters);
         rank[p] = r as u32;
-        e.splat(p, -1, |_| {});
+        e.splat(p, -1, |_, _| {});
         e.energy[p] -= POISON;
     }
     drop(clusters);
@@ -527,7 +564,7 @@ pub fn rank(
             e.take::<true, false, false>(&mut voids)
         };
         rank[p] = r as u32;
-        e.splat(p, 1, |_| {});
+        e.splat(p, 1, |_, _| {});
         e.energy[p] += POISON;
         if (r as u64 + 1).is_multiple_of(tick) {
             progress(r as u64 + 1, total);

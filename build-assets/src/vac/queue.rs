@@ -16,12 +16,6 @@ pub const BLOCK_BITS: u32 = 5;
 /// Texels per block.
 pub const BLOCK: usize = 1 << BLOCK_BITS;
 
-/// Index of the texel a key refers to (the low 32 bits).
-#[inline(always)]
-pub fn key_index(k: u128) -> usize {
-    (k as u32) as usize
-}
-
 /// A min-queue over blocks of texels; the caller supplies each block's minimum key.
 #[derive(Clone, Debug)]
 pub struct BlockQueue {
@@ -31,35 +25,35 @@ pub struct BlockQueue {
 impl BlockQueue {
     /// A queue over `n` texels; `block_min(b)` is the smallest candidate key in block `b`
     /// ([`ABSENT`] when the block holds no candidate).
-    pub fn new(n: usize, block_min: impl Fn(usize) -> u128) -> Self {
+    pub fn new(n: usize, block_min: impl Fn(usize) -> u64) -> Self {
         let blocks = n.div_ceil(BLOCK).max(1);
         Self {
             tree: MinTree::new((0..blocks).map(block_min)),
         }
     }
 
-    /// The block holding the smallest key, and that key.
+    /// The smallest key (the caller knows which texel, hence which block, it names).
     #[inline]
-    pub fn top(&self) -> Option<(usize, u128)> {
+    pub fn top(&self) -> Option<u64> {
         let k = self.tree.min();
-        (k != ABSENT).then(|| (key_index(k) >> BLOCK_BITS, k))
+        (k != ABSENT).then_some(k)
     }
 
     /// The key of block `b`.
     #[inline]
-    pub fn leaf(&self, b: usize) -> u128 {
+    pub fn leaf(&self, b: usize) -> u64 {
         self.tree.get(b)
     }
 
     /// Offers `key` as a new minimum of block `b` (kept only if smaller).
     #[inline]
-    pub fn lower(&mut self, b: usize, key: u128) {
+    pub fn lower(&mut self, b: usize, key: u64) {
         self.tree.lower(b, key);
     }
 
     /// Sets the minimum key of block `b`.
     #[inline]
-    pub fn set(&mut self, b: usize, key: u128) {
+    pub fn set(&mut self, b: usize, key: u64) {
         self.tree.set(b, key);
     }
 }
@@ -71,12 +65,12 @@ mod tests {
 
     #[test]
     fn best_tracks_block_minima() {
+        // Keys carry a random score in the high 32 bits and the texel in the low 32.
         let mut rng = SplitMix64::new(2);
         let n = 3 * BLOCK + 5;
-        let mut keys: Vec<u128> = (0..n)
-            .map(|i| (rng.next_u64() as u128) << 64 | i as u128)
-            .collect();
-        let block_min = |keys: &[u128], b: usize| {
+        let key = |rng: &mut SplitMix64, i: usize| (rng.next_u64() >> 33) << 32 | i as u64;
+        let mut keys: Vec<u64> = (0..n).map(|i| key(&mut rng, i)).collect();
+        let block_min = |keys: &[u64], b: usize| {
             keys[b * BLOCK..((b + 1) * BLOCK).min(n)]
                 .iter()
                 .copied()
@@ -85,19 +79,20 @@ mod tests {
         };
         let mut q = BlockQueue::new(n, |b| block_min(&keys, b));
         for _ in 0..200 {
-            let min = *keys.iter().min().unwrap();
-            assert_eq!(q.top(), Some((key_index(min) / BLOCK, min)));
+            assert_eq!(q.top(), keys.iter().copied().min());
             let i = rng.below(n as u64) as usize;
-            keys[i] = (rng.next_u64() as u128) << 64 | i as u128;
+            keys[i] = key(&mut rng, i);
             q.set(i / BLOCK, block_min(&keys, i / BLOCK));
         }
         // Lowering keeps only smaller keys.
-        let (b, k) = q.top().unwrap();
+        let k = q.top().unwrap();
+        let b = (k as u32) as usize / BLOCK;
         q.lower(b, k + 1);
-        assert_eq!(q.top(), Some((b, k)));
+        assert_eq!(q.top(), Some(k));
+        assert_eq!(q.leaf(b), k);
         let other = (b + 1) % n.div_ceil(BLOCK);
-        let smaller = ((k >> 32) - 1) << 32 | (other * BLOCK) as u128;
+        let smaller = ((k >> 32) - 1) << 32 | (other * BLOCK) as u64;
         q.lower(other, smaller);
-        assert_eq!(q.top(), Some((other, smaller)));
+        assert_eq!(q.top(), Some(smaller));
     }
 }

@@ -1,4 +1,4 @@
-//! A tournament tree (implicit binary tree of subtree minima) over one `u128` key per leaf (per
+//! A tournament tree (implicit binary tree of subtree minima) over one `u64` key per leaf (per
 //! block of texels, in [`super::queue::BlockQueue`]).
 //!
 //! Updating a leaf walks up only while the subtree minimum changes, and lowering one only while
@@ -7,18 +7,18 @@
 //! tree with one cache line per sibling group halves the depth but measured slower.)
 
 /// Keys of absent texels (on texels in the void tree, off texels in the cluster tree).
-pub const ABSENT: u128 = u128::MAX;
+pub const ABSENT: u64 = u64::MAX;
 
 /// A min-tournament tree over `n` keys.
 #[derive(Clone, Debug)]
 pub struct MinTree {
     leaves: usize,
-    nodes: Vec<u128>,
+    nodes: Vec<u64>,
 }
 
 impl MinTree {
     /// A tree over `keys` (one per texel).
-    pub fn new(keys: impl ExactSizeIterator<Item = u128>) -> Self {
+    pub fn new(keys: impl ExactSizeIterator<Item = u64>) -> Self {
         let leaves = keys.len().next_power_of_two().max(2);
         let mut nodes = vec![ABSENT; 2 * leaves];
         for (i, k) in keys.enumerate() {
@@ -32,18 +32,18 @@ impl MinTree {
 
     /// The smallest key, or [`ABSENT`] when every key is absent.
     #[inline]
-    pub fn min(&self) -> u128 {
+    pub fn min(&self) -> u64 {
         self.nodes[1]
     }
 
     /// Sets the key of texel `i`.
     #[inline]
-    pub fn set(&mut self, i: usize, key: u128) {
+    pub fn set(&mut self, i: usize, key: u64) {
         let mut at = self.leaves + i;
         self.nodes[at] = key;
         while at > 1 {
             // The winner's index by arithmetic, then one load: the comparison is a coin flip,
-            // and LLVM turns a `min` of u128 into a branch that mispredicts half the time.
+            // and LLVM turns a `min` of keys into a branch that mispredicts half the time.
             let win = at ^ (self.nodes[at ^ 1] < self.nodes[at]) as usize;
             let m = self.nodes[win];
             at >>= 1;
@@ -58,13 +58,13 @@ impl MinTree {
 impl MinTree {
     /// The key of texel `i`.
     #[inline]
-    pub fn get(&self, i: usize) -> u128 {
+    pub fn get(&self, i: usize) -> u64 {
         self.nodes[self.leaves + i]
     }
 
     /// Lowers the key of texel `i` to `key` if that is smaller (a no-op otherwise).
     #[inline]
-    pub fn lower(&mut self, i: usize, key: u128) {
+    pub fn lower(&mut self, i: usize, key: u64) {
         let mut at = self.leaves + i;
         while at >= 1 && self.nodes[at] > key {
             self.nodes[at] = key;
@@ -82,14 +82,14 @@ mod tests {
     fn root_is_the_minimum_after_arbitrary_updates() {
         let mut rng = SplitMix64::new(5);
         let n = 1000;
-        let mut keys: Vec<u128> = (0..n).map(|_| rng.next_u64() as u128).collect();
+        let mut keys: Vec<u64> = (0..n).map(|_| rng.next_u64()).collect();
         let mut t = MinTree::new(keys.iter().copied());
         for step in 0..20_000 {
             let i = rng.below(n as u64) as usize;
             keys[i] = if step % 7 == 0 {
                 ABSENT
             } else {
-                rng.next_u64() as u128
+                rng.next_u64()
             };
             t.set(i, keys[i]);
             assert_eq!(t.min(), *keys.iter().min().unwrap());
