@@ -9,10 +9,12 @@
 //! - [`space`]: sample spaces, their stratified initialisation and distances;
 //! - [`filter`]: spatial and temporal filters (box, Gaussian, binomial, EMA with history
 //!   rejection, eq. 14–17) and the footprint of `F`;
-//! - [`optimize`]: exact sequential swaps on conflict-free tiles (eq. 8).
+//! - [`optimize`]: exact sequential swaps on conflict-free tiles (eq. 8);
+//! - [`paper`]: the paper's GPU schedule (random pairings, all at once), a baseline for reports.
 
 pub mod filter;
 pub mod optimize;
+pub mod paper;
 pub mod space;
 
 pub use filter::{Combine, Filter, Footprint, TemporalFilter};
@@ -165,6 +167,39 @@ pub fn generate_within(
             progress
         )
     )
+}
+
+/// Runs the paper's own schedule ([`paper`]) from the same stratified start as
+/// [`generate_within`] (a baseline for reports; baking never uses it).
+pub fn paper_baseline(
+    params: &FastParams,
+    dims: &[usize],
+    seed: u64,
+    schedule: paper::Schedule,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Outcome {
+    let samples = initial_samples(params, dims, seed);
+    let fp = params.footprint(dims);
+    let d = dims3(dims);
+    with_metric!(
+        params.sample_space,
+        run_paper(d, &fp, samples, seed, schedule, progress)
+    )
+}
+
+fn run_paper<const C: usize, D>(
+    d: [usize; 3],
+    fp: &Footprint,
+    samples: Vec<f64>,
+    seed: u64,
+    schedule: paper::Schedule,
+    progress: &mut dyn FnMut(u64, u64),
+    dist: D,
+) -> Outcome
+where
+    D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
+{
+    paper::optimize::<C, D>(d, fp, samples, dist, seed, schedule, progress)
 }
 
 fn run_optimize<const C: usize, D>(

@@ -64,23 +64,31 @@ impl Outcome {
 
 /// Texel samples shared between tile tasks: each `f64` lives in an atomic so disjoint tiles
 /// can write concurrently without `unsafe` (relaxed loads compile to plain loads).
-struct State<const C: usize> {
+pub(super) struct State<const C: usize> {
     cells: Vec<[AtomicU64; C]>,
 }
 
 impl<const C: usize> State<C> {
     #[inline(always)]
-    fn load(&self, i: usize) -> [f64; C] {
+    pub(super) fn load(&self, i: usize) -> [f64; C] {
         let c = &self.cells[i];
         std::array::from_fn(|k| f64::from_bits(c[k].load(Relaxed)))
     }
 
     #[inline(always)]
-    fn store(&self, i: usize, v: [f64; C]) {
+    pub(super) fn store(&self, i: usize, v: [f64; C]) {
         let c = &self.cells[i];
         for k in 0..C {
             c[k].store(v[k].to_bits(), Relaxed);
         }
+    }
+
+    /// The samples, `C` values per texel.
+    pub(super) fn into_samples(self) -> Vec<f64> {
+        self.cells
+            .iter()
+            .flat_map(|c| std::array::from_fn::<f64, C, _>(|k| f64::from_bits(c[k].load(Relaxed))))
+            .collect()
     }
 }
 
@@ -109,7 +117,7 @@ impl Torus {
 }
 
 /// The problem: footprint, distance and torus.
-struct Problem<'a, const C: usize, D> {
+pub(super) struct Problem<'a, const C: usize, D> {
     fp: &'a Footprint,
     torus: Torus,
     dist: D,
@@ -123,7 +131,7 @@ struct Problem<'a, const C: usize, D> {
 const BLOCK: usize = 16;
 
 impl<'a, const C: usize, D> Problem<'a, C, D> {
-    fn new(fp: &'a Footprint, dims: [usize; 3], dist: D) -> Self {
+    pub(super) fn new(fp: &'a Footprint, dims: [usize; 3], dist: D) -> Self {
         let mut sorted: Vec<(i32, i32, i32, f64)> = fp
             .rows
             .iter()
@@ -154,7 +162,7 @@ impl<const C: usize, D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync> Problem<'_, C, D
     /// `F · d(s_i, s_j)` in size, so once the partial sum is below `−2 d(s_i, s_j) Σ F_unvisited`
     /// the sign is settled. Entries are visited heaviest first, so this usually happens early.
     #[inline]
-    fn gain(&self, s: &State<C>, p: [usize; 2], q: [usize; 2], t: usize) -> Option<f64> {
+    pub(super) fn gain(&self, s: &State<C>, p: [usize; 2], q: [usize; 2], t: usize) -> Option<f64> {
         let [w, h, n] = self.torus.dims;
         let tz = self.torus.tw[t] as usize;
         let i = tz + p[1] * w + p[0];
@@ -212,7 +220,7 @@ impl<const C: usize, D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync> Problem<'_, C, D
     }
 
     /// The loss of eq. (7), `−Σ_jk F_jk d(s_j, s_k)`, summed per slice in a fixed order.
-    fn loss(&self, s: &State<C>) -> f64 {
+    pub(super) fn loss(&self, s: &State<C>) -> f64 {
         let per: Vec<f64> = (0..self.torus.dims[2])
             .into_par_iter()
             .map(|t| self.slice_energy(s, t))
@@ -242,7 +250,7 @@ where
     Problem::new(fp, dims, dist).loss(&state)
 }
 
-fn to_state<const C: usize>(samples: &[f64]) -> State<C> {
+pub(super) fn to_state<const C: usize>(samples: &[f64]) -> State<C> {
     State {
         cells: samples
             .chunks_exact(C)
@@ -370,13 +378,8 @@ where
             break;
         }
     }
-    let samples = state
-        .cells
-        .iter()
-        .flat_map(|c| std::array::from_fn::<f64, C, _>(|k| f64::from_bits(c[k].load(Relaxed))))
-        .collect();
     Outcome {
-        samples,
+        samples: state.into_samples(),
         initial_loss,
         curve,
     }

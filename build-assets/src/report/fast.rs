@@ -57,6 +57,34 @@ pub struct FilteredError {
     pub spatial_only: f64,
 }
 
+/// One run of the paper's own schedule (FAST §4.1, [`fast::paper`]).
+#[derive(Clone, Debug, Serialize)]
+pub struct PaperRun {
+    /// Cap on γ (1 = the schedule as published).
+    pub gamma_max: f64,
+    /// Iterations run.
+    pub iterations: u32,
+    /// Wall time in seconds (2 threads).
+    pub seconds: f64,
+    /// Loss after the last iteration.
+    pub final_loss: f64,
+    /// `(seconds, loss)` every `iterations / 10` iterations.
+    pub curve: Vec<(f64, f64)>,
+    /// When our optimiser (same start, 2 threads) first reached this run's final loss, if it did.
+    pub ours_seconds_to_reach: Option<f64>,
+}
+
+/// The paper's schedule against our optimiser from the same stratified start.
+#[derive(Clone, Debug, Serialize)]
+pub struct PaperComparison {
+    /// What was optimised.
+    pub case: String,
+    /// Our optimiser run to convergence on 2 threads.
+    pub ours: Run,
+    /// The paper's schedule, as published and with γ capped.
+    pub paper: Vec<PaperRun>,
+}
+
 /// The whole FAST report.
 #[derive(Clone, Debug, Serialize)]
 pub struct FastReport {
@@ -64,6 +92,67 @@ pub struct FastReport {
     pub runs: Vec<Run>,
     /// Errors after filtering, 64×64×16 scalar masks.
     pub errors: Vec<FilteredError>,
+    /// The paper's schedule against ours (with `full`).
+    pub paper: Option<PaperComparison>,
+}
+
+/// Runs the paper's schedule (10 000 iterations with γ capped at 1/4 and 1/8; 1 000 as published,
+/// which diverges) and our optimiser on the paper's timing case at `dims`, all on 2 threads. The full 128×128×32
+/// is out of reach on this CPU for the paper's schedule (about 2.6 · 10⁹ pair evaluations), so the
+/// comparison runs at a size both can finish.
+pub fn paper_comparison(dims: &[usize], log: &mut dyn FnMut(&str)) -> PaperComparison {
+    let case = format!(
+        "cosine hemisphere {} box5 x ema(0.1,0.1) product",
+        dims.iter()
+            .map(|d| d.to_string())
+            .collect::<Vec<_>>()
+            .join("x")
+    );
+    let params = cosine_params();
+    let (ours, _) = timed(&case, &params, dims, 2);
+    log(&format!("{} (ours, to convergence)", ours.describe()));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("thread pool");
+    let mut paper = Vec::new();
+    for gamma_max in [1.0, 0.25, 0.125] {
+        let iterations = if gamma_max < 1.0 { 10_000 } else { 1_000 };
+        let schedule = fast::paper::Schedule {
+            iterations,
+            loss_every: iterations / 10,
+            gamma_max,
+        };
+        let start = Instant::now();
+        let out = pool.install(|| fast::paper_baseline(&params, dims, 1, schedule, &mut |_, _| {}));
+        let final_loss = out.loss();
+        let run = PaperRun {
+            gamma_max,
+            iterations,
+            seconds: start.elapsed().as_secs_f64(),
+            final_loss,
+            curve: std::iter::once((0.0, out.initial_loss))
+                .chain(out.curve.iter().map(|p| (p.seconds, p.loss)))
+                .collect(),
+            ours_seconds_to_reach: ours
+                .curve
+                .iter()
+                .find(|&&(_, l)| l <= final_loss)
+                .map(|&(t, _)| t),
+        };
+        log(&format!(
+            "  paper schedule, gamma <= {gamma_max}: {iterations} iterations in {:.1} s, loss {:.1} -> {:.1}; ours {}",
+            run.seconds,
+            out.initial_loss,
+            final_loss,
+            match run.ours_seconds_to_reach {
+                Some(t) => format!("reached it after {t:.1} s"),
+                None => format!("stopped at {:.1} without reaching it", ours.final_loss),
+            }
+        ));
+        paper.push(run);
+    }
+    PaperComparison { case, ours, paper }
 }
 
 /// The scalar case: Gaussian σ 1.3435 × EMA (α 0.1, β 0.1), product.
@@ -156,8 +245,14 @@ pub fn errors(mask: &str, values: &[f64], dims: [usize; 3]) -> FilteredError {
 }
 
 /// Runs the report; writes `fast_loss_*.png` into `out`. `full` adds the 128×128×32
-/// cosine-hemisphere case (minutes).
-pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<FastReport, String> {
+/// cosine-hemisphere case (minutes); `paper` the paper's schedule against ours on 64×64×16
+/// ([`paper_comparison`], about 15 minutes).
+pub fn run(
+    out: &Path,
+    full: bool,
+    paper: bool,
+    log: &mut dyn FnMut(&str),
+) -> Result<FastReport, String> {
     let dims = [64, 64, 16];
     let mut runs = Vec::new();
     let mut errs = Vec::new();
@@ -288,5 +383,10 @@ pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<FastRepo
                 .join(", ")
         ));
     }
-    Ok(FastReport { runs, errors: errs })
+    let paper = paper.then(|| paper_comparison(&[64, 64, 16], log));
+    Ok(FastReport {
+        runs,
+        errors: errs,
+        paper,
+    })
 }
