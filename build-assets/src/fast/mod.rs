@@ -137,16 +137,18 @@ pub fn generate(
     seed: u64,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Outcome {
-    generate_within(params, dims, seed, None, progress)
+    generate_within(params, dims, seed, None, optimize::CONVERGED, progress)
 }
 
-/// [`generate`] with an optional wall-clock budget in seconds (for timing reports; the result
-/// then depends on the machine, so baking never uses it).
+/// [`generate`] with an optional wall-clock budget in seconds and a convergence threshold
+/// ([`optimize::Limits`]; for reports: a budget makes the result depend on the machine, so
+/// baking never sets one).
 pub fn generate_within(
     params: &FastParams,
     dims: &[usize],
     seed: u64,
     budget: Option<f64>,
+    converged: f64,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Outcome {
     let samples = initial_samples(params, dims, seed);
@@ -162,7 +164,8 @@ pub fn generate_within(
             seed,
             optimize::Limits {
                 max_rounds: rounds,
-                budget
+                budget,
+                converged
             },
             progress
         )

@@ -24,13 +24,16 @@ const TILE: usize = 16;
 /// Half-width of the window near partners are drawn from.
 const LOCAL: u64 = 2;
 
-/// When to stop besides convergence.
+/// When to stop.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Limits {
     /// Most rounds.
     pub max_rounds: u32,
     /// Wall-clock budget in seconds (reports only: it makes the result machine-dependent).
     pub budget: Option<f64>,
+    /// A round gaining less than this fraction of the gain so far ends optimisation
+    /// ([`CONVERGED`] when baking).
+    pub converged: f64,
 }
 
 /// One point of the loss-against-time curve.
@@ -275,7 +278,11 @@ pub fn optimize<const C: usize, D>(
 where
     D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
 {
-    let Limits { max_rounds, budget } = limits;
+    let Limits {
+        max_rounds,
+        budget,
+        converged,
+    } = limits;
     let start = Instant::now();
     let [w, h, n] = dims;
     let state = to_state::<C>(&samples);
@@ -370,7 +377,7 @@ where
             accepted,
         });
         progress(round as u64 + 1, max_rounds as u64);
-        if round_gain <= CONVERGED * total_gain {
+        if round_gain <= converged * total_gain {
             break;
         }
         // A wall-clock budget (reports only: it makes the result depend on the machine).
