@@ -70,18 +70,18 @@ fn dims3(dims: &[usize]) -> [usize; 3] {
 
 /// Distance of the loss for each sample space, monomorphised per channel count.
 macro_rules! with_metric {
-    ($space:expr, $f:ident ( $($arg:expr),* )) => {
+    ($space:expr, $($f:ident)::+ ( $($arg:expr),* )) => {
         match $space {
-            SampleSpace::Scalar => $f::<1, _>($($arg,)* |a: &[f64; 1], b: &[f64; 1]| (a[0] - b[0]).abs()),
-            SampleSpace::Circle => $f::<1, _>($($arg,)* |a: &[f64; 1], b: &[f64; 1]| {
+            SampleSpace::Scalar => $($f)::+::<1, _>($($arg,)* |a: &[f64; 1], b: &[f64; 1]| (a[0] - b[0]).abs()),
+            SampleSpace::Circle => $($f)::+::<1, _>($($arg,)* |a: &[f64; 1], b: &[f64; 1]| {
                 let d = (a[0] - b[0]).abs();
                 d.min(1.0 - d)
             }),
-            SampleSpace::Vec2 => $f::<2, _>($($arg,)* euclid::<2>),
-            SampleSpace::Vec3 => $f::<3, _>($($arg,)* euclid::<3>),
-            SampleSpace::Vec4 => $f::<4, _>($($arg,)* euclid::<4>),
+            SampleSpace::Vec2 => $($f)::+::<2, _>($($arg,)* euclid::<2>),
+            SampleSpace::Vec3 => $($f)::+::<3, _>($($arg,)* euclid::<3>),
+            SampleSpace::Vec4 => $($f)::+::<4, _>($($arg,)* euclid::<4>),
             SampleSpace::Sphere | SampleSpace::Hemisphere | SampleSpace::CosineHemisphere => {
-                $f::<3, _>($($arg,)* |a: &[f64; 3], b: &[f64; 3]| {
+                $($f)::+::<3, _>($($arg,)* |a: &[f64; 3], b: &[f64; 3]| {
                     space::acos_fast(a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
                 })
             }
@@ -120,14 +120,7 @@ pub fn initial_samples(params: &FastParams, dims: &[usize], seed: u64) -> Vec<f6
 pub fn loss(params: &FastParams, dims: &[usize], samples: &[f64]) -> f64 {
     let fp = params.footprint(dims);
     let d = dims3(dims);
-    with_metric!(params.sample_space, run_loss(d, &fp, samples))
-}
-
-fn run_loss<const C: usize, D>(d: [usize; 3], fp: &Footprint, s: &[f64], dist: D) -> f64
-where
-    D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
-{
-    optimize::loss::<C, D>(d, fp, s, dist)
+    with_metric!(params.sample_space, optimize::loss(d, &fp, samples))
 }
 
 /// Generates the optimised samples (`channels` per texel) and the loss curve.
@@ -157,7 +150,7 @@ pub fn generate_within(
     let rounds = params.iterations.unwrap_or(MAX_ROUNDS);
     with_metric!(
         params.sample_space,
-        run_optimize(
+        optimize::optimize(
             d,
             &fp,
             samples,
@@ -186,38 +179,8 @@ pub fn paper_baseline(
     let d = dims3(dims);
     with_metric!(
         params.sample_space,
-        run_paper(d, &fp, samples, seed, schedule, progress)
+        paper::optimize(d, &fp, samples, seed, schedule, progress)
     )
-}
-
-fn run_paper<const C: usize, D>(
-    d: [usize; 3],
-    fp: &Footprint,
-    samples: Vec<f64>,
-    seed: u64,
-    schedule: paper::Schedule,
-    progress: &mut dyn FnMut(u64, u64),
-    dist: D,
-) -> Outcome
-where
-    D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
-{
-    paper::optimize::<C, D>(d, fp, samples, dist, seed, schedule, progress)
-}
-
-fn run_optimize<const C: usize, D>(
-    d: [usize; 3],
-    fp: &Footprint,
-    samples: Vec<f64>,
-    seed: u64,
-    limits: optimize::Limits,
-    progress: &mut dyn FnMut(u64, u64),
-    dist: D,
-) -> Outcome
-where
-    D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
-{
-    optimize::optimize::<C, D>(d, fp, samples, dist, seed, limits, progress)
 }
 
 /// Encodes samples for storage. Uniform scalars are the ranks of their slice (so unorm formats

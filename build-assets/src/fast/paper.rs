@@ -45,10 +45,10 @@ pub fn optimize<const C: usize, D>(
     dims: [usize; 3],
     fp: &Footprint,
     samples: Vec<f64>,
-    dist: D,
     seed: u64,
     schedule: Schedule,
     progress: &mut dyn FnMut(u64, u64),
+    dist: D,
 ) -> Outcome
 where
     D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
