@@ -372,6 +372,7 @@ impl<'f> Engine<'f> {
         best
     }
 
+    /// Score of texel `p`, or `Energy::MAX` when `CHECK_ON` finds it in the wrong state.
     #[inline(always)]
     fn candidate_score<const VOIDS: bool, const PHASE3: bool, const CHECK_ON: bool>(
         &self,
