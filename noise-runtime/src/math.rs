@@ -90,9 +90,13 @@ pub fn split(x: f32) -> (i32, f32) {
     // Branch-free floor: truncation rounds negatives up, so step down by one when it did
     // (the sign bit of x − ⌊x⌋_trunc). Integer bit tests rather than float compares: LLVM turns
     // float selects into branches on x86, which mispredict on random input.
-    let down = ((x - ft).to_bits() > 0x8000_0000) as u32; // strictly negative, not −0
-    let cell = t.saturating_sub(down as i32);
-    let f = x - (ft - down as f32);
+    let down = ((x - ft).to_bits() > 0x8000_0000) as i32; // strictly negative, not −0
+    let cell = t.saturating_sub(down);
+    // The offset from the integer cell, not from `ft − down`: a float select there would become
+    // a branch, mispredicted on half of all random coordinates. Exact below 2^24 (the cell is a
+    // float); above, x is an integer and equals its cell; a saturated cell gives an offset
+    // outside [0, 1), caught below.
+    let f = x - cell as f32;
     // Keep f only when it is a valid offset in [0, 1) (NaN or infinite inputs give 0): for
     // non-negative floats the bit patterns order like the values.
     let keep = (f.to_bits() < 0x3f80_0000) as u32;
@@ -229,8 +233,8 @@ pub fn sqrt_f64(x: f64) -> f64 {
 pub fn split_in_range(x: f32) -> (i32, f32) {
     let t = x as i32;
     let ft = t as f32;
-    let down = ((x - ft).to_bits() > 0x8000_0000) as u32;
-    (t - down as i32, x - (ft - down as f32))
+    let cell = t - ((x - ft).to_bits() > 0x8000_0000) as i32;
+    (cell, x - cell as f32)
 }
 
 /// Whether every coordinate is finite and below 2^31 in magnitude (then [`split_in_range`]

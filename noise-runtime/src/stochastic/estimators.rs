@@ -30,41 +30,82 @@ pub fn pick(xi: &mut f32, t: f32) -> bool {
     }
 }
 
-/// Branch-free [`pick`] for the hot paths: `(upper, remapped ξ)`, where `upper` says which
-/// side was chosen as a value `0` or `1` whose bits LLVM cannot see (see [`Side`]). One
-/// division, no branch on the random decision.
+/// The corner of a `D`-linear interpolation that Algorithm 1 selects with one ξ: for each axis
+/// (first axis first), 1 if the upper side was chosen (probability `t[a]`), else 0. The same
+/// selection as [`pick`] applied axis after axis, computed without a division, a branch or a
+/// chain of dependent decisions, for the lattice estimators.
+///
+/// Remapping ξ after each decision (eq. 4) and keeping ξ fixed while narrowing the interval it
+/// must fall in are the same selection: a decision with weight `t` splits the current interval
+/// `[s, s + l)` at `s + l·t` into the upper side (first) and the lower one. All `2^D − 1` split
+/// points depend only on the weights, and they are exactly the boundaries between the `2^D`
+/// leaf intervals, which lie in corner order. So the corner's rank is the number of split
+/// points at or below ξ: one compare each, all independent, summed — where the nested
+/// decisions would be a chain of `D` dependent ones. A weight that rounds to 0 or 1 (the fade
+/// of `t ≥ 0.9952` in f32) just gives a leaf of width 0, which ξ never falls in, and nothing is
+/// ever divided. Rounding moves a corner's probability by a few ulps.
 #[inline(always)]
-pub(crate) fn choose(xi: f32, t: f32) -> (Side, f32) {
-    // ξ and t are non-negative floats below 2, so their bit patterns order like their values
-    // and differ by less than 2^31: the sign of the difference is the decision, as a mask
-    // built by an arithmetic shift. No compare, so LLVM cannot turn the selects below into a
-    // branch (which would mispredict half the time on random ξ).
-    let m = ((xi.to_bits() as i32).wrapping_sub(t.to_bits() as i32) >> 31) as u32;
-    let keep = |mask: u32, v: f32| f32::from_bits(v.to_bits() & mask);
-    let num = xi - keep(!m, t);
-    // Reciprocals of both sides do not depend on ξ, so their divisions run in parallel, off the
-    // dependency chain; the remap itself is one multiply. A side of width 0 has reciprocal ∞
-    // but is never chosen (its mask is zero).
-    let (inv_up, inv_low) = (1.0 / t, 1.0 / (1.0 - t));
-    let inv = f32::from_bits(keep(m, inv_up).to_bits() | keep(!m, inv_low).to_bits());
-    (Side(m), (num * inv).min(ONE_BELOW))
+pub(crate) fn nested_corner<const D: usize>(xi: f32, t: [f32; D]) -> Corner {
+    let xi = sanitize_xi(xi).to_bits() as i32;
+    // The intervals of the current level, as (start, length); a level has 2^a of them.
+    let mut start = [0.0f32; 8];
+    let mut len = [1.0f32; 8];
+    let mut rank = 0u32;
+    for (a, &ta) in t.iter().enumerate() {
+        let n = 1usize << a;
+        for j in (0..n).rev() {
+            let cut = len[j] * ta;
+            let split = start[j] + cut;
+            // Split points and ξ are non-negative floats below 2, so their bit patterns order
+            // like their values: `split ≤ ξ` is the sign of the difference, as 0 or 1. An
+            // integer, not a compare: LLVM lowers selects on a compare to branches on x86.
+            rank += !(xi.wrapping_sub(split.to_bits() as i32) as u32) >> 31;
+            if a + 1 < D {
+                start[2 * j + 1] = split;
+                len[2 * j + 1] = len[j] - cut;
+                start[2 * j] = start[j];
+                len[2 * j] = cut;
+            }
+        }
+    }
+    // Leaves are ranked upper side first, first axis most significant: the complement of the
+    // rank has bit `D − 1 − a` set when axis `a` took its upper side. Shifted so that axis `a`
+    // is bit `3 − a` whatever `D`.
+    Corner((!rank & ((1 << D) - 1)) << (4 - D))
 }
 
-/// Which side [`choose`] took, as an all-ones (upper) or all-zeros (lower) mask.
+/// The corner [`nested_corner`] chose: bit `3 − a` is set when axis `a` took its upper side.
 #[derive(Clone, Copy)]
-pub(crate) struct Side(u32);
+pub(crate) struct Corner(u32);
 
-impl Side {
-    /// 1 for the upper side, 0 for the lower.
+/// `UNIT[k][a]` is bit `3 − a` of `k` as a float. Read by index, so that the side of a random
+/// decision never becomes a float select, which LLVM lowers to a branch on x86 (mispredicted
+/// on half of all random ξ).
+static UNIT: [[f32; 4]; 16] = {
+    let mut t = [[0.0f32; 4]; 16];
+    let mut k = 0;
+    while k < 16 {
+        let mut a = 0;
+        while a < 4 {
+            t[k][a] = ((k >> (3 - a)) & 1) as f32;
+            a += 1;
+        }
+        k += 1;
+    }
+    t
+};
+
+impl Corner {
+    /// 1 if axis `a` took its upper side, else 0.
     #[inline(always)]
-    pub(crate) fn int(self) -> i32 {
-        (self.0 & 1) as i32
+    pub(crate) fn int(self, a: usize) -> i32 {
+        ((self.0 >> (3 - a)) & 1) as i32
     }
 
-    /// 1.0 for the upper side, 0.0 for the lower, without a branch.
+    /// 1.0 if axis `a` took its upper side, else 0.0, without a branch.
     #[inline(always)]
-    pub(crate) fn float(self) -> f32 {
-        (self.0 & 1) as f32
+    pub(crate) fn float(self, a: usize) -> f32 {
+        UNIT[self.0 as usize & 15][a]
     }
 }
 
@@ -94,5 +135,78 @@ pub fn russian_roulette(p: f32, xi: f32, approx: f32, f: impl FnOnce() -> f32) -
         approx
     } else {
         (f() - p * approx) / (1.0 - p)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Corner `c` (bit `D − 1 − a` of `c` set = axis `a` upper) of a sweep of ξ over a fine grid.
+    fn histogram<const D: usize>(t: [f32; D], steps: u32) -> [u32; 16] {
+        let mut h = [0u32; 16];
+        for k in 0..steps {
+            let c = nested_corner((k as f32 + 0.5) / steps as f32, t);
+            let mut idx = 0;
+            for a in 0..D {
+                idx = idx << 1 | c.int(a) as usize;
+                assert_eq!(c.float(a), c.int(a) as f32);
+            }
+            h[idx] += 1;
+        }
+        h
+    }
+
+    #[test]
+    fn nested_corner_picks_each_corner_with_its_interpolation_weight() {
+        let steps = 1 << 16;
+        for t in [[0.25f32, 0.5, 0.75], [0.1, 0.9, 0.6], [0.3, 0.0, 1.0]] {
+            let h = histogram(t, steps);
+            for (c, &count) in h.iter().enumerate().take(8) {
+                let w: f32 = (0..3)
+                    .map(|a| {
+                        if c >> (2 - a) & 1 == 1 {
+                            t[a]
+                        } else {
+                            1.0 - t[a]
+                        }
+                    })
+                    .product();
+                let freq = count as f32 / steps as f32;
+                // A grid of 2^16 points resolves each leaf to within 2 steps.
+                assert!(
+                    (freq - w).abs() <= 2.0 / steps as f32,
+                    "t {t:?} corner {c}: {freq} vs {w}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn nested_corner_never_takes_a_side_of_weight_zero() {
+        for xi in [0.0f32, 1e-30, 0.5, ONE_BELOW, 1.0, f32::NAN, -1.0, 2.0] {
+            // Weights 0 and 1, as a fade weight rounded to exactly 0 or 1 in f32 gives them.
+            for t in [[0.0f32, 1.0], [1.0, 0.0], [0.0, 0.0], [1.0, 1.0]] {
+                let c = nested_corner(xi, t);
+                for a in 0..2 {
+                    assert_eq!(c.int(a), t[a] as i32, "ξ {xi}, t {t:?}, axis {a}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn nested_corner_agrees_with_sequential_picks() {
+        // Away from the split points (where rounding may differ by an ulp) the two forms are
+        // the same selection.
+        let t = [0.37f32, 0.61, 0.23, 0.83];
+        for k in 0..997 {
+            let xi = (k as f32 + 0.31) / 997.0;
+            let c = nested_corner(xi, t);
+            let mut x = xi;
+            for (a, &ta) in t.iter().enumerate() {
+                assert_eq!(pick(&mut x, ta) as i32, c.int(a), "ξ {xi}, axis {a}");
+            }
+        }
     }
 }

@@ -5,7 +5,7 @@
 //! samples one impulse per cell with probability `(2i + 1)/n_c²`.
 
 use super::estimators::sanitize_xi;
-use super::sparse::{cells, impulse, rotate};
+use super::sparse::{cells, flip, impulse, rotate};
 use crate::math::{cos_turns, exp_neg, sqrt_fast};
 
 /// Gabor noise parameters.
@@ -84,7 +84,7 @@ impl PoissonCdf {
 /// Kernel value and sign of impulse `i` of the cell with hash `h`, at offset `d` from the
 /// cell's corner.
 #[inline(always)]
-fn term(h: u32, i: u32, d: [f32; 3], f0: f32) -> (f32, f32) {
+fn term(h: u32, i: u32, d: [f32; 3], f0: f32) -> (f32, u32) {
     let (q, sign) = impulse(h, i);
     let (x, y, z) = (d[0] - q[0], d[1] - q[1], d[2] - q[2]);
     let r2 = x * x + y * y + z * z;
@@ -117,7 +117,7 @@ pub fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
         let inv = 1.0 / n.max(1) as f32;
         for i in 0..n {
             let (k, s) = term(h, i, d, f0);
-            sum += s * (i as f32 + 0.5) * inv * k;
+            sum += flip((i as f32 + 0.5) * inv * k, s);
         }
     });
     sum
@@ -136,9 +136,9 @@ pub fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
         if n == 0 {
             return;
         }
-        let i = ((n as f32 * sqrt_fast(rotate(xi, h))) as u32).min(n - 1);
+        let i = ((n as f32 * sqrt_fast(rotate(xi, h))) as i32 as u32).min(n - 1);
         let (k, s) = term(h, i, d, f0);
-        sum += s * 0.5 * n as f32 * k;
+        sum += flip(0.5 * n as f32 * k, s);
     });
     sum
 }

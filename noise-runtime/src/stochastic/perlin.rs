@@ -4,7 +4,7 @@
 //! corner with probability equal to its interpolation weight, and only that corner's gradient
 //! is evaluated.
 
-use super::estimators::{choose, sanitize_xi};
+use super::estimators::nested_corner;
 use super::hash::{PRIME, corner, hash4};
 use crate::math::{dfade, fade, split};
 
@@ -133,15 +133,14 @@ pub fn perlin2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
 pub fn perlin2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
     let (ix, x) = split(p[0]);
     let (iy, y) = split(p[1]);
-    let (bx, xi) = choose(sanitize_xi(xi), fade(x));
-    let (by, _) = choose(xi, fade(y));
+    let c = nested_corner(xi, [fade(x), fade(y)]);
     let g = g2(corner(
         seed,
-        (ix.wrapping_add(bx.int()) as u32).wrapping_mul(PRIME[0]),
-        (iy.wrapping_add(by.int()) as u32).wrapping_mul(PRIME[1]),
+        (ix.wrapping_add(c.int(0)) as u32).wrapping_mul(PRIME[0]),
+        (iy.wrapping_add(c.int(1)) as u32).wrapping_mul(PRIME[1]),
         0,
     ));
-    g[0] * (x - bx.float()) + g[1] * (y - by.float())
+    g[0] * (x - c.float(0)) + g[1] * (y - c.float(1))
 }
 
 /// 3D Perlin noise (improved noise), about `[-1, 1]`.
@@ -229,22 +228,28 @@ pub fn perlin3_grad_cell(cell: [i32; 3], f: [f32; 3], seed: u32) -> (f32, [f32; 
 }
 
 /// One-sample estimator of [`perlin3`] (Algorithm 1 in 3D): one gradient instead of eight.
-#[inline]
+#[inline(always)]
 pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    let (ix, x) = split(p[0]);
-    let (iy, y) = split(p[1]);
-    let (iz, z) = split(p[2]);
-    // Two remaps (the last decision needs none), each one division and no branch.
-    let (bx, xi) = choose(sanitize_xi(xi), fade(x));
-    let (by, xi) = choose(xi, fade(y));
-    let (bz, _) = choose(xi, fade(z));
+    if crate::math::in_split_range(p) {
+        perlin3_stochastic_with(p, seed, xi, crate::math::split_in_range)
+    } else {
+        perlin3_stochastic_with(p, seed, xi, split)
+    }
+}
+
+#[inline(always)]
+fn perlin3_stochastic_with(p: [f32; 3], seed: u32, xi: f32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
+    let (ix, x) = sp(p[0]);
+    let (iy, y) = sp(p[1]);
+    let (iz, z) = sp(p[2]);
+    let c = nested_corner(xi, [fade(x), fade(y), fade(z)]);
     let g = g3(corner(
         seed,
-        (ix.wrapping_add(bx.int()) as u32).wrapping_mul(PRIME[0]),
-        (iy.wrapping_add(by.int()) as u32).wrapping_mul(PRIME[1]),
-        (iz.wrapping_add(bz.int()) as u32).wrapping_mul(PRIME[2]),
+        (ix.wrapping_add(c.int(0)) as u32).wrapping_mul(PRIME[0]),
+        (iy.wrapping_add(c.int(1)) as u32).wrapping_mul(PRIME[1]),
+        (iz.wrapping_add(c.int(2)) as u32).wrapping_mul(PRIME[2]),
     ));
-    g[0] * (x - bx.float()) + g[1] * (y - by.float()) + g[2] * (z - bz.float())
+    g[0] * (x - c.float(0)) + g[1] * (y - c.float(1)) + g[2] * (z - c.float(2))
 }
 
 /// 4D Perlin noise (e.g. 3D noise animated over time).
@@ -280,15 +285,16 @@ pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
 
 /// One-sample estimator of [`perlin4`]: one gradient instead of sixteen.
 pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    let mut xi = sanitize_xi(xi);
     let mut cell = [0i32; 4];
+    let mut f = [0.0f32; 4];
+    for a in 0..4 {
+        (cell[a], f[a]) = split(p[a]);
+    }
+    let c = nested_corner(xi, f.map(fade));
     let mut o = [0.0f32; 4];
     for a in 0..4 {
-        let (c, f) = split(p[a]);
-        let (b, next) = choose(xi, fade(f));
-        xi = next;
-        cell[a] = c.wrapping_add(b.int());
-        o[a] = f - b.float();
+        cell[a] = cell[a].wrapping_add(c.int(a));
+        o[a] = f[a] - c.float(a);
     }
     let g = g4(hash4(cell[0], cell[1], cell[2], cell[3], seed));
     g[0] * o[0] + g[1] * o[1] + g[2] * o[2] + g[3] * o[3]

@@ -13,14 +13,16 @@ use crate::math::{split, sqrt_fast};
 /// slope) and polynomial in `r²`, so no square root.
 #[inline(always)]
 fn kernel(r2: f32) -> f32 {
-    let t = 1.0 - r2;
-    if t > 0.0 { t * t * t } else { 0.0 }
+    let t = (1.0 - r2).max(0.0);
+    t * t * t
 }
 
 /// Position in the cell (21-bit coordinates) and sign of impulse `i` of the cell with hash `h`:
-/// one 64-bit multiply–xorshift–multiply of `(h, i)`, so any impulse is reached directly.
+/// one 64-bit multiply–xorshift–multiply of `(h, i)`, so any impulse is reached directly. The
+/// sign is a sign-bit mask for [`flip`]: a random ±1 as a float select would become a branch,
+/// mispredicted on half of all impulses.
 #[inline(always)]
-pub(crate) fn impulse(h: u32, i: u32) -> ([f32; 3], f32) {
+pub(crate) fn impulse(h: u32, i: u32) -> ([f32; 3], u32) {
     let mut z = ((h as u64) << 32 | i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
     z ^= z >> 29;
     z = z.wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -31,8 +33,14 @@ pub(crate) fn impulse(h: u32, i: u32) -> ([f32; 3], f32) {
             ((z >> 22) & 0x1f_ffff) as i32 as f32 * S,
             ((z >> 1) & 0x1f_ffff) as i32 as f32 * S,
         ],
-        if z & 1 == 0 { 1.0 } else { -1.0 },
+        (z as u32) << 31,
     )
+}
+
+/// `v` with its sign bit flipped by `sign` (0 or `0x8000_0000`, from [`impulse`]).
+#[inline(always)]
+pub(crate) fn flip(v: f32, sign: u32) -> f32 {
+    f32::from_bits(v.to_bits() ^ sign)
 }
 
 /// ξ rotated by the cell hash `h` (Cranley–Patterson) on the 2^-24 grid, in `[0, 1)`: integer
@@ -74,32 +82,59 @@ fn block(p: [f32; 3]) -> ([[u32; 3]; 3], [f32; 3], [[f32; 3]; 3]) {
     (hp, f, slab)
 }
 
-/// Calls `each(cell hash, offset of p from that cell's corner)` for the cells of the 3×3×3
-/// block that the kernel's unit ball around `p` reaches (about 21 of 27 on average).
-#[inline(always)]
-pub(crate) fn cells(p: [f32; 3], seed: u32, mut each: impl FnMut(u32, [f32; 3])) {
-    let (hp, f, slab) = block(p);
-    for k in 0..3 {
-        for j in 0..3 {
-            let s_jk = slab[1][j] + slab[2][k];
-            if s_jk >= 1.0 {
-                continue;
-            }
-            for i in 0..3 {
-                if slab[0][i] + s_jk >= 1.0 {
-                    continue;
-                }
-                let h = corner(seed, hp[0][i], hp[1][j], hp[2][k]);
-                each(
-                    h,
-                    [
+/// The cells of the 3×3×3 block around `p` that the kernel's unit ball reaches (about 21 of 27
+/// on average), compacted: their hashes and the offsets of `p` from their corners.
+pub(crate) struct Reach {
+    hash: [u32; 27],
+    offset: [[f32; 3]; 27],
+    count: usize,
+}
+
+impl Reach {
+    /// Every cell is written and the count advanced only for reachable ones, so no branch
+    /// depends on where `p` lies in its cell (such branches mispredict on random points); the
+    /// loops over the compacted cells then exit on one count.
+    #[inline(always)]
+    pub(crate) fn new(p: [f32; 3], seed: u32) -> Self {
+        let (hp, f, slab) = block(p);
+        let mut r = Reach {
+            hash: [0; 27],
+            offset: [[0.0; 3]; 27],
+            count: 0,
+        };
+        for k in 0..3 {
+            for j in 0..3 {
+                for i in 0..3 {
+                    let c = r.count;
+                    r.hash[c] = corner(seed, hp[0][i], hp[1][j], hp[2][k]);
+                    r.offset[c] = [
                         f[0] + 1.0 - i as f32,
                         f[1] + 1.0 - j as f32,
                         f[2] + 1.0 - k as f32,
-                    ],
-                );
+                    ];
+                    r.count += (slab[0][i] + slab[1][j] + slab[2][k] < 1.0) as usize;
+                }
             }
         }
+        r
+    }
+
+    /// The reachable cells as `(hash, offset of p from the cell's corner)`.
+    #[inline(always)]
+    pub(crate) fn iter(&self) -> impl Iterator<Item = (u32, [f32; 3])> + '_ {
+        self.hash[..self.count]
+            .iter()
+            .copied()
+            .zip(self.offset[..self.count].iter().copied())
+    }
+}
+
+/// Calls `each(cell hash, offset of p from that cell's corner)` for the cells of the 3×3×3
+/// block that the kernel's unit ball around `p` reaches.
+#[inline(always)]
+pub(crate) fn cells(p: [f32; 3], seed: u32, mut each: impl FnMut(u32, [f32; 3])) {
+    for (h, d) in Reach::new(p, seed).iter() {
+        each(h, d);
     }
 }
 
@@ -113,13 +148,10 @@ pub fn sparse_conv3(p: [f32; 3], n: u32, seed: u32) -> f32 {
     cells(p, seed, |h, d| {
         for i in 0..n {
             let (q, s) = impulse(h, i);
-            let k = kernel(r2(d, q));
-            if k > 0.0 {
-                sum += s * (i as f32 + 0.5) * inv * k;
-            }
+            sum += flip((i as f32 + 0.5) * kernel(r2(d, q)), s);
         }
     });
-    sum * inv
+    sum * inv * inv
 }
 
 /// One-sample estimator of [`sparse_conv3`] (eq. 8): one importance-sampled impulse per cell.
@@ -129,14 +161,32 @@ pub fn sparse_conv3(p: [f32; 3], n: u32, seed: u32) -> f32 {
 pub fn sparse_conv3_stochastic(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
     let n = n.clamp(1, 64);
     let xi = sanitize_xi(xi);
-    let nf = n as f32;
+    let r = Reach::new(p, seed);
+    // The impulse of every cell first, in one fixed-length pass without branches (which LLVM
+    // vectorises), so the impulse evaluations below do not each wait on a square root.
+    let idx: [u32; 27] = core::array::from_fn(|c| importance_index(rotate(xi, r.hash[c]), n));
     let mut sum = 0.0;
-    cells(p, seed, |h, d| {
-        let i = ((nf * sqrt_fast(rotate(xi, h))) as u32).min(n - 1);
+    for ((h, d), &i) in r.iter().zip(&idx) {
         let (q, s) = impulse(h, i);
-        sum += s * kernel(r2(d, q));
-    });
+        sum += flip(kernel(r2(d, q)), s);
+    }
     0.5 * sum
+}
+
+/// The impulse `i = ⌊n √u⌋` (probability `(2i + 1)/n²` for uniform `u ∈ [0, 1)`, eq. 8),
+/// branch-free: `√u` as `u · 1/√u` from the bit-level first guess and three Newton steps
+/// (relative error below 3e-7), with `u` kept away from 0.
+#[inline(always)]
+pub(crate) fn importance_index(u: f32, n: u32) -> u32 {
+    let v = u.max(1e-30);
+    let mut y = f32::from_bits(0x5f37_5a86u32.wrapping_sub(v.to_bits() >> 1));
+    let h = 0.5 * v;
+    y *= 1.5 - h * y * y;
+    y *= 1.5 - h * y * y;
+    y *= 1.5 - h * y * y;
+    // `as i32`: the product is in [0, n], and the signed conversion is one instruction where
+    // the unsigned one branches.
+    ((n as f32 * (u * y)) as i32 as u32).min(n - 1)
 }
 
 #[inline(always)]
@@ -198,9 +248,9 @@ pub fn sparse_conv3_stochastic1(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 
         f[1] + 1.0 - j as f32,
         f[2] + 1.0 - k as f32,
     ];
-    let imp = ((n as f32 * sqrt_fast(rest)) as u32).min(n - 1);
+    let imp = ((n as f32 * sqrt_fast(rest)) as i32 as u32).min(n - 1);
     let (q, s) = impulse(h, imp);
-    0.5 * count as f32 * s * kernel(r2(d, q))
+    flip(0.5 * count as f32 * kernel(r2(d, q)), s)
 }
 
 /// One-term estimator of [`fbm_sparse_conv3`]: one octave, one cell, one impulse.
