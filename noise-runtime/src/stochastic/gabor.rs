@@ -5,7 +5,7 @@
 //! samples one impulse per cell with probability `(2i + 1)/n_c²`.
 
 use super::estimators::sanitize_xi;
-use super::sparse::{cells, flip, impulse, rotate};
+use super::sparse::{Reach, cells, flip, importance_index, impulse, rotate};
 use crate::math::{cos_turns, exp_neg, sqrt_fast};
 
 /// Gabor noise parameters.
@@ -88,6 +88,9 @@ fn term(h: u32, i: u32, d: [f32; 3], f0: f32) -> (f32, u32) {
     let (q, sign) = impulse(h, i);
     let (x, y, z) = (d[0] - q[0], d[1] - q[1], d[2] - q[2]);
     let r2 = x * x + y * y + z * z;
+    // Outside the support the kernel is 0; the branch saves the orientation, exponential and
+    // cosine for about half of all impulses. (A branch-free window in the one-impulse
+    // estimator measured almost 2× slower.)
     if r2 >= 1.0 {
         return (0.0, sign);
     }
@@ -130,16 +133,18 @@ pub fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
     let (lambda, f0) = g.sane();
     let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
     let xi = sanitize_xi(xi);
+    let r = Reach::new(p, seed);
+    // Every cell's impulse count and sampled impulse first, in fixed-length passes without
+    // branches, so the kernel evaluations below do not each wait on a Poisson search and a
+    // square root. A cell without impulses samples impulse 0 with weight 0.
+    let n: [u32; 27] = core::array::from_fn(|c| count(r.hash[c], &cdf));
+    let idx: [u32; 27] =
+        core::array::from_fn(|c| importance_index(rotate(xi, r.hash[c]), n[c].max(1)));
     let mut sum = 0.0;
-    cells(p, seed, |h, d| {
-        let n = count(h, &cdf);
-        if n == 0 {
-            return;
-        }
-        let i = ((n as f32 * sqrt_fast(rotate(xi, h))) as i32 as u32).min(n - 1);
-        let (k, s) = term(h, i, d, f0);
-        sum += flip(0.5 * n as f32 * k, s);
-    });
+    for (c, (h, d)) in r.iter().enumerate() {
+        let (k, s) = term(h, idx[c], d, f0);
+        sum += flip(0.5 * n[c] as f32 * k, s);
+    }
     sum
 }
 

@@ -85,7 +85,8 @@ fn block(p: [f32; 3]) -> ([[u32; 3]; 3], [f32; 3], [[f32; 3]; 3]) {
 /// The cells of the 3×3×3 block around `p` that the kernel's unit ball reaches (about 21 of 27
 /// on average), compacted: their hashes and the offsets of `p` from their corners.
 pub(crate) struct Reach {
-    hash: [u32; 27],
+    /// Hashes of the reachable cells (the first `count`; the rest are scratch).
+    pub(crate) hash: [u32; 27],
     offset: [[f32; 3]; 27],
     count: usize,
 }
