@@ -48,17 +48,66 @@ pub(crate) fn corner(seed: u32, xp: u32, yp: u32, zp: u32) -> u32 {
     (seed ^ xp ^ yp ^ zp).wrapping_mul(0x27d4_eb2d)
 }
 
-/// A point in the unit cell from a corner hash: three 10-bit coordinates (1/1024 steps) after
-/// one more multiply–xorshift round.
+/// A point in the unit cell from a corner hash: one of [`POINTS`], chosen by the hash's top 10
+/// bits. A table read instead of computing the point from the hash (a multiply–xorshift round
+/// and three int-to-float conversions): a 27-cell search does it 27 times, and the table cut
+/// Worley F1 from 77 to 43 ns.
 #[inline(always)]
 pub(crate) fn point3(h: u32) -> [f32; 3] {
-    let mut a = h ^ (h >> 15);
-    a = a.wrapping_mul(0x2c1b_3c6d);
-    a ^= a >> 12;
-    const S: f32 = 1.0 / 1024.0;
-    [
-        (a >> 22) as i32 as f32 * S + S * 0.5,
-        ((a >> 12) & 1023) as i32 as f32 * S + S * 0.5,
-        ((a >> 2) & 1023) as i32 as f32 * S + S * 0.5,
-    ]
+    let p = POINTS[(h >> 22) as usize];
+    [p[0], p[1], p[2]]
+}
+
+/// 1024 feature points in the unit cell (16 KiB), each coordinate on the 1/1024 grid at a cell
+/// centre `(k + ½)/1024`, from a multiply–xorshift hash of the index: as many distinct points
+/// as the 10 hash bits can choose. Padded to four lanes so a point is one 16-byte read.
+static POINTS: [[f32; 4]; 1024] = {
+    let mut t = [[0.0f32; 4]; 1024];
+    let mut k = 0;
+    while k < 1024 {
+        let mut a = (k as u32).wrapping_mul(0x9e37_79b9) ^ 0x5bd1_e995;
+        a ^= a >> 15;
+        a = a.wrapping_mul(0x2c1b_3c6d);
+        a ^= a >> 12;
+        const S: f32 = 1.0 / 1024.0;
+        t[k] = [
+            (a >> 22) as f32 * S + S * 0.5,
+            ((a >> 12) & 1023) as f32 * S + S * 0.5,
+            ((a >> 2) & 1023) as f32 * S + S * 0.5,
+            0.0,
+        ];
+        k += 1;
+    }
+    t
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn feature_points_are_distinct_and_fill_the_cell_evenly() {
+        let mut seen: [[f32; 3]; 1024] = [[0.0; 3]; 1024];
+        for (k, p) in POINTS.iter().enumerate() {
+            seen[k] = [p[0], p[1], p[2]];
+            for &c in &p[..3] {
+                assert!(c > 0.0 && c < 1.0);
+            }
+        }
+        for k in 0..1024 {
+            for j in 0..k {
+                assert_ne!(seen[k], seen[j], "points {j} and {k}");
+            }
+        }
+        // Each coordinate's octants hold 128 ± 4.5σ points (σ = √(1024·⅛·⅞) ≈ 10.6).
+        for a in 0..3 {
+            let mut bins = [0i32; 8];
+            for p in &POINTS {
+                bins[(p[a] * 8.0) as usize] += 1;
+            }
+            for b in bins {
+                assert!((b - 128).abs() < 48, "axis {a}: {bins:?}");
+            }
+        }
+    }
 }

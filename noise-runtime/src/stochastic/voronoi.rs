@@ -13,7 +13,7 @@ use crate::math::{exp_neg, ln, split, sqrt_fast};
 pub const SMOOTH_VORONOI_Q: f32 = 0.875;
 
 /// The feature point of lattice cell `cell`, relative to the cell's corner (each component in
-/// `(0, 1)`, on a 1/1024 grid).
+/// `(0, 1)`, on a 1/1024 grid): one of 1024 points, chosen by a hash of the cell.
 pub fn feature_point3(cell: [i32; 3], seed: u32) -> [f32; 3] {
     point3(corner(
         seed,
