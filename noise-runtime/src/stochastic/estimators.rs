@@ -43,9 +43,10 @@ pub fn pick(xi: &mut f32, t: f32) -> bool {
 /// points at or below ξ: one compare each, all independent, summed — where the nested
 /// decisions would be a chain of `D` dependent ones. A weight that rounds to 0 or 1 (the fade
 /// of `t ≥ 0.9952` in f32) just gives a leaf of width 0, which ξ never falls in, and nothing is
-/// ever divided. Rounding moves a corner's probability by a few ulps.
+/// ever divided. Rounding moves a corner's probability by a few ulps. `D` is at most 4.
 #[inline(always)]
 pub(crate) fn nested_corner<const D: usize>(xi: f32, t: [f32; D]) -> Corner {
+    const { assert!(D >= 1 && D <= 4) };
     let xi = sanitize_xi(xi).to_bits() as i32;
     // The intervals of the current level, as (start, length); a level has 2^a of them.
     let mut start = [0.0f32; 8];
