@@ -7,7 +7,7 @@
 use super::estimators::sanitize_xi;
 use super::fractal::{Fractal, fractal, fractal_stochastic};
 use super::hash::{PRIME, corner};
-use crate::math::{split, sqrt_fast};
+use crate::math::split;
 
 /// Kernel `k(r) = (1 − r²)³` for `r < 1`, 0 beyond: smooth (C¹ at the support edge, zero
 /// slope) and polynomial in `r²`, so no square root.
@@ -249,8 +249,7 @@ pub fn sparse_conv3_stochastic1(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 
         f[1] + 1.0 - j as f32,
         f[2] + 1.0 - k as f32,
     ];
-    let imp = ((n as f32 * sqrt_fast(rest)) as i32 as u32).min(n - 1);
-    let (q, s) = impulse(h, imp);
+    let (q, s) = impulse(h, importance_index(rest, n));
     flip(0.5 * count as f32 * kernel(r2(d, q)), s)
 }
 
