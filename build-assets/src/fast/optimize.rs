@@ -8,8 +8,9 @@
 //! swaps neither read nor change anything another tile of that colour uses, and their ΔL add up
 //! exactly. Each tile draws its pairs from its own seeded generator, so the result is the same on
 //! any number of threads. The tile grid moves by a random offset every round so samples can
-//! migrate anywhere. Optimisation stops when a round gains less than [`CONVERGED`] of the total
-//! gain so far (or at the `iterations` cap).
+//! migrate anywhere. Proposals are screened ([`SCREENS`]): most losing swaps are skipped after a
+//! few of their heaviest terms. Optimisation stops when a round under the exact rejection alone
+//! gains less than [`CONVERGED`] of the total gain so far (or at the `iterations` cap).
 
 use super::filter::Footprint;
 use crate::rng::{SplitMix64, derive_seed};
@@ -23,6 +24,22 @@ pub const CONVERGED: f64 = 1e-4;
 const TILE: usize = 16;
 /// Half-width of the window near partners are drawn from.
 const LOCAL: u64 = 2;
+
+/// The screens κ of the ΔL evaluation that [`optimize`] runs through: it starts with the first
+/// and moves to the next each time a round gains less than the convergence fraction; the last,
+/// `f64::INFINITY`, is the exact rejection alone, so a finished run has converged exactly as
+/// without screening.
+///
+/// Why screen: the exact early rejection bounds every unvisited term of eq. (8) by
+/// `2 F d(s_i, s_j)` (triangle inequality), but the terms have mixed signs, so their sum is
+/// typically of the order `d(s_i, s_j) √(Σ F²)`, far below that bound. On the paper's product
+/// footprint (box 5×5 × EMA over 16 frames, 1296 entries) exact rejection visits ~1200 entries
+/// per proposal on average; the screen at κ = 1 visits ~170, and the loss falls ~5× faster per
+/// second. A screen only ever *skips* a swap that very likely does not gain: accepted swaps are
+/// still evaluated in full, so the loss falls monotonically and its bookkeeping stays exact.
+/// κ = 1 was the fastest single value of 0.3–3 on that case; the finer levels then pick up the
+/// subtle swaps it skips (64×64×16 on 2 threads: converged at −55682.0 in 19 s; exact alone, −55683.4 in 69 s).
+pub const SCREENS: [f64; 3] = [1.0, 4.0, f64::INFINITY];
 
 /// When to stop.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -128,6 +145,8 @@ pub(super) struct Problem<'a, const C: usize, D> {
     sorted: Vec<(i32, i32, i32, f64)>,
     /// `tail[m] = Σ_{e ≥ m} F_e`: the weight not yet visited after `m` sorted entries.
     tail: Vec<f64>,
+    /// `spread[m] = √(Σ_{e ≥ m} F_e²)`: the scale of the unvisited terms' sum (see [`SCREENS`]).
+    spread: Vec<f64>,
 }
 
 /// Sorted entries are visited in blocks of this many between early-rejection checks.
@@ -145,8 +164,13 @@ impl<'a, const C: usize, D> Problem<'a, C, D> {
                 .then((a.0, a.1, a.2).cmp(&(b.0, b.1, b.2)))
         });
         let mut tail = vec![0.0; sorted.len() + 1];
+        let mut spread = vec![0.0; sorted.len() + 1];
         for m in (0..sorted.len()).rev() {
             tail[m] = tail[m + 1] + sorted[m].3;
+            spread[m] = spread[m + 1] + sorted[m].3 * sorted[m].3;
+        }
+        for v in &mut spread {
+            *v = v.sqrt();
         }
         Problem {
             fp,
@@ -154,6 +178,7 @@ impl<'a, const C: usize, D> Problem<'a, C, D> {
             dist,
             sorted,
             tail,
+            spread,
         }
     }
 }
@@ -164,8 +189,18 @@ impl<const C: usize, D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync> Problem<'_, C, D
     /// provably cannot help: by the triangle inequality each unvisited term is at most
     /// `F · d(s_i, s_j)` in size, so once the partial sum is below `−2 d(s_i, s_j) Σ F_unvisited`
     /// the sign is settled. Entries are visited heaviest first, so this usually happens early.
+    ///
+    /// With a finite `screen` κ it also gives up once the partial sum is below
+    /// `−κ · d(s_i, s_j) · √(Σ F²_unvisited)` (see [`SCREENS`]); `f64::INFINITY` is exact.
     #[inline]
-    pub(super) fn gain(&self, s: &State<C>, p: [usize; 2], q: [usize; 2], t: usize) -> Option<f64> {
+    pub(super) fn gain(
+        &self,
+        s: &State<C>,
+        p: [usize; 2],
+        q: [usize; 2],
+        t: usize,
+        screen: f64,
+    ) -> Option<f64> {
         let [w, h, n] = self.torus.dims;
         let tz = self.torus.tw[t] as usize;
         let i = tz + p[1] * w + p[0];
@@ -192,8 +227,9 @@ impl<const C: usize, D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync> Problem<'_, C, D
                     * (((self.dist)(&sj, &a) - (self.dist)(&si, &a))
                         - ((self.dist)(&sj, &c) - (self.dist)(&si, &c)));
             }
-            let rest = self.tail[((b + 1) * BLOCK).min(self.sorted.len())];
-            if acc + 2.0 * dij * rest <= 0.0 {
+            let m = ((b + 1) * BLOCK).min(self.sorted.len());
+            // `screen · 0` is NaN for an infinite screen at the end: the test is then false.
+            if acc + 2.0 * dij * self.tail[m] <= 0.0 || acc + screen * dij * self.spread[m] <= 0.0 {
                 return None;
             }
         }
@@ -301,7 +337,9 @@ where
     let (tx, ty) = (bx.len() - 1, by.len() - 1);
     let mut loss = initial_loss;
     let mut total_gain = 0.0;
+    let mut level = 0;
     for round in 0..max_rounds {
+        let kappa = SCREENS[level];
         let mut rng = SplitMix64::new(derive_seed(seed, round as u64));
         let (ox, oy) = (rng.below(w as u64) as usize, rng.below(h as u64) as usize);
         let mut round_gain = 0.0;
@@ -350,7 +388,7 @@ where
                             continue;
                         }
                         let (p, q) = (at(a), at(b));
-                        if let Some(g) = problem.gain(&state, p, q, t).filter(|&g| g > 0.0) {
+                        if let Some(g) = problem.gain(&state, p, q, t, kappa).filter(|&g| g > 0.0) {
                             let i = problem.torus.tw[t] as usize + p[1] * w + p[0];
                             let j = problem.torus.tw[t] as usize + q[1] * w + q[0];
                             let (si, sj) = (state.load(i), state.load(j));
@@ -378,7 +416,10 @@ where
         });
         progress(round as u64 + 1, max_rounds as u64);
         if round_gain <= converged * total_gain {
-            break;
+            if level + 1 == SCREENS.len() {
+                break;
+            }
+            level += 1;
         }
         // A wall-clock budget (reports only: it makes the result depend on the machine).
         if budget.is_some_and(|b| start.elapsed().as_secs_f64() >= b) {
@@ -389,5 +430,61 @@ where
         samples: state.into_samples(),
         initial_loss,
         curve,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fast::{Combine, Filter, TemporalFilter};
+
+    /// The screen only ever skips: whenever the screened ΔL accepts a swap, it is the exact
+    /// ΔL, bit for bit (same terms, same order); it never accepts a swap the exact evaluation
+    /// rejects; and it keeps most of the swaps that do gain.
+    #[test]
+    fn screened_gain_is_exact_when_it_accepts() {
+        let dims = [16, 16, 8];
+        let fp = Footprint::new(
+            dims,
+            Filter::Box { size: 5 },
+            TemporalFilter::Ema {
+                alpha: 0.1,
+                beta: 0.1,
+            },
+            Combine::Product,
+        );
+        let mut rng = SplitMix64::new(7);
+        let samples: Vec<f64> = (0..16 * 16 * 8 * 3).map(|_| rng.unit_f64()).collect();
+        let state = to_state::<3>(&samples);
+        let euclid = |a: &[f64; 3], b: &[f64; 3]| {
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+        };
+        let problem = Problem::new(&fp, dims, euclid);
+        let (mut screened, mut exact_gains, mut both) = (0, 0, 0);
+        for _ in 0..4000 {
+            let p = [rng.below(16) as usize, rng.below(16) as usize];
+            let q = [rng.below(16) as usize, rng.below(16) as usize];
+            let t = rng.below(8) as usize;
+            let exact = problem
+                .gain(&state, p, q, t, f64::INFINITY)
+                .filter(|&g| g > 0.0);
+            let fast = problem
+                .gain(&state, p, q, t, SCREENS[0])
+                .filter(|&g| g > 0.0);
+            exact_gains += exact.is_some() as u32;
+            match (exact, fast) {
+                (Some(e), Some(f)) => {
+                    assert_eq!(e.to_bits(), f.to_bits());
+                    both += 1;
+                }
+                (None, Some(f)) => panic!("screen accepted a swap the exact ΔL rejects: {f}"),
+                (Some(_), None) => screened += 1,
+                (None, None) => {}
+            }
+        }
+        // Random samples: plenty of swaps help, and the screen keeps most of them.
+        assert!(exact_gains > 1000, "{exact_gains}");
+        assert!(both > exact_gains * 3 / 4, "{both} of {exact_gains} kept");
+        eprintln!("exact gains {exact_gains}, kept {both}, screened out {screened}");
     }
 }
