@@ -121,3 +121,72 @@ pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
         perlin3_stochastic(q, octave_seed(seed, o), x)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Over a fine ξ grid, the estimator picks each octave in proportion to `|gain|^o`, hands
+    /// the noise a remapped ξ in `[0, 1)` whose mean is ½ per octave, and signs it like `gain^o`.
+    #[test]
+    fn octave_choice_follows_the_weights() {
+        for (n, gain) in [
+            (10, 0.5),
+            (1, 0.5),
+            (32, 0.9),
+            (7, -0.7),
+            (8, 1.0),
+            (5, 0.0),
+            (32, 1e-30),
+            (32, 16.0),
+            (6, 3.0),
+        ] {
+            let f = Fractal::new(n, 2.0, gain);
+            // The estimator's scale, summed as it sums it.
+            let (mut total_f32, mut a) = (0.0f32, 1.0f32);
+            for _ in 0..n {
+                total_f32 += a;
+                a *= gain.abs();
+            }
+            let steps = 1u32 << 18;
+            let mut count = [0u32; 32];
+            let mut xi_sum = [0.0f64; 32];
+            for i in 0..steps {
+                let xi = (i as f32 + 0.5) / steps as f32;
+                let v = fractal_stochastic([1.0; 3], f, xi, |q, o, x| {
+                    assert!((0.0..1.0).contains(&x), "ξ' = {x}");
+                    assert_eq!(q[0], 2.0f32.powi(o as i32), "frequency of octave {o}");
+                    count[o as usize] += 1;
+                    xi_sum[o as usize] += x as f64;
+                    1.0
+                });
+                assert!(v.is_finite() && v.abs() == total_f32, "weight {v}");
+            }
+            let g = (gain as f64).abs();
+            let total: f64 = (0..n).map(|o| g.powi(o as i32)).sum();
+            for o in 0..32 {
+                let want = if (o as u32) < n {
+                    g.powi(o as i32) / total
+                } else {
+                    0.0
+                };
+                let got = count[o] as f64 / steps as f64;
+                // Each interval's ends are exact to an f32 rounding; the grid adds 1/steps.
+                assert!(
+                    (got - want).abs() <= 2.0 / steps as f64 + 1e-6,
+                    "n {n} gain {gain} octave {o}: {got} vs {want}"
+                );
+                if count[o] > 64 {
+                    let mean = xi_sum[o] / count[o] as f64;
+                    assert!((mean - 0.5).abs() < 0.01, "octave {o}: mean ξ' {mean}");
+                }
+            }
+        }
+        // Negative gains alternate the sign: octave 1 of gain −0.7 is negative.
+        let f = Fractal::new(3, 2.0, -0.7);
+        let total = 1.0 + 0.7 + 0.49f32;
+        let xi = 1.2 / total; // inside octave 1's interval [1, 1.7) / total
+        assert!(fractal_stochastic([0.0; 3], f, xi, |_, o, _| o as f32) < 0.0);
+        assert!(fractal_stochastic([0.0; 3], f, 0.1, |_, _, _| 1.0) > 0.0);
+    }
+}
