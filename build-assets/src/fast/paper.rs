@@ -14,10 +14,9 @@
 //! once γ reaches 1, over half of all pairs swap together each iteration, their ΔL undo each
 //! other and the loss climbs back above its start, where it stays (32×32×8: −4768.8 at the
 //! start, about −4715 from then on). With γ capped ([`Schedule::gamma_max`]) it converges: on
-//! 64×64×16 and 2 threads, 10 000 iterations reach −55681.9 in 267 s at γ ≤ 1/8 (our
-//! optimiser: the same loss after about 12.5 s) and −55693.2 in 528 s at γ ≤ 1/4 (below where
-//! our optimiser stops when baking, −55682.0 after 19 s; run on, it reaches −55693.2 after
-//! about 27 s).
+//! 64×64×16 and 2 threads, 10 000 iterations reach −55681.9 in 267–301 s at γ ≤ 1/8 (our
+//! optimiser: the same loss after 13 s) and −55693.2 in 528–576 s at γ ≤ 1/4 (below where our
+//! optimiser stops when baking, −55682.0 after 19 s; run on, it reaches −55693.2 after 28 s).
 //!
 //! The early rejection of [`super::optimize`]'s ΔL only ever rejects swaps that cannot lower the
 //! loss, so it decides exactly as a full evaluation would.
