@@ -89,18 +89,26 @@ fn term(h: u32, i: u32, d: [f32; 3], f0: f32) -> (f32, u32) {
     let (x, y, z) = (d[0] - q[0], d[1] - q[1], d[2] - q[2]);
     let r2 = x * x + y * y + z * z;
     // Outside the support the kernel is 0; the branch saves the orientation, exponential and
-    // cosine for about half of all impulses. (A branch-free window in the one-impulse
-    // estimator measured almost 2× slower.)
+    // cosine for about half of all impulses. (Compacting the impulses inside first, as the
+    // estimator does, measured 7 % slower here: 2366 against 2204 ns.)
     if r2 >= 1.0 {
         return (0.0, sign);
     }
+    (kernel_at(h, i, [x, y, z], f0), sign)
+}
+
+/// Kernel value of impulse `i` of the cell with hash `h` at offset `v` from the impulse, inside
+/// the support: the envelope times the harmonic along the impulse's own random orientation.
+#[inline(always)]
+fn kernel_at(h: u32, i: u32, v: [f32; 3], f0: f32) -> f32 {
+    let [x, y, z] = v;
+    let r2 = x * x + y * y + z * z;
     // Isotropic orientation from a second draw: z uniform in [−1, 1], azimuth uniform.
     let (o, _) = impulse(!h, i);
     let oz = 1.0 - 2.0 * o[0];
     let rr = sqrt_fast(1.0 - oz * oz);
     let (ox, oy) = (rr * cos_turns(o[1]), rr * cos_turns(o[1] - 0.25));
-    let k = exp_neg(-PI_A2 * r2) * cos_turns(f0 * (ox * x + oy * y + oz * z));
-    (k, sign)
+    exp_neg(-PI_A2 * r2) * cos_turns(f0 * (ox * x + oy * y + oz * z))
 }
 
 /// Impulse count of a cell (Poisson with mean λ).
@@ -140,10 +148,21 @@ pub fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
     let n: [u32; 27] = core::array::from_fn(|c| count(r.hash[c], &cdf));
     let idx: [u32; 27] =
         core::array::from_fn(|c| importance_index(rotate(xi, r.hash[c]), n[c].max(1)));
-    let mut sum = 0.0;
+    // The sampled impulses inside the kernel's support, compacted without a branch (whether an
+    // impulse is inside is a coin flip per cell, which a branch would mispredict half the time);
+    // only they pay for the orientation, the exponential and the cosine.
+    let mut live = [(0u32, 0u32, [0.0f32; 3], 0.0f32); 27];
+    let mut m = 0;
     for (c, (h, d)) in r.iter().enumerate() {
-        let (k, s) = term(h, idx[c], d, f0);
-        sum += flip(0.5 * n[c] as f32 * k, s);
+        let (q, sign) = impulse(h, idx[c]);
+        let x = [d[0] - q[0], d[1] - q[1], d[2] - q[2]];
+        let r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+        live[m] = (h, idx[c], x, flip(0.5 * n[c] as f32, sign));
+        m += (r2 < 1.0) as usize;
+    }
+    let mut sum = 0.0;
+    for &(h, i, x, w) in &live[..m] {
+        sum += w * kernel_at(h, i, x, f0);
     }
     sum
 }
@@ -164,5 +183,52 @@ mod tests {
             // u at the very top: every entry may be below it; the count stops at 63.
             assert!(cdf.sample(super::super::estimators::ONE_BELOW) <= 63);
         }
+    }
+
+    /// The estimator written plainly: every reachable cell's sampled impulse through [`term`]
+    /// (which branches on the support), in cell order.
+    fn plain_estimate(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
+        let (lambda, f0) = g.sane();
+        let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
+        let xi = sanitize_xi(xi);
+        let mut sum = 0.0;
+        for (h, d) in Reach::new(p, seed).iter() {
+            let n = count(h, &cdf);
+            let (k, s) = term(h, importance_index(rotate(xi, h), n.max(1)), d, f0);
+            sum += flip(0.5 * n as f32 * k, s);
+        }
+        sum
+    }
+
+    #[test]
+    fn compacted_estimator_is_the_plain_sum_bit_for_bit() {
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / 16_777_216.0
+        };
+        let mut nonzero = 0;
+        for k in 0..4000 {
+            let p = [
+                next() * 64.0 - 32.0,
+                next() * 64.0 - 32.0,
+                next() * 64.0 - 32.0,
+            ];
+            let xi = next();
+            let g = Gabor {
+                impulses: [0.5, 8.0, 30.0][k % 3],
+                frequency: [0.0, 2.0, 7.5][k % 3],
+            };
+            let fast = gabor3_stochastic(p, g, 7, xi);
+            assert_eq!(
+                fast.to_bits(),
+                plain_estimate(p, g, 7, xi).to_bits(),
+                "{p:?} ξ {xi}"
+            );
+            nonzero += (fast != 0.0) as u32;
+        }
+        assert!(nonzero > 3000, "{nonzero}");
     }
 }
