@@ -7,7 +7,7 @@
 use super::estimators::sanitize_xi;
 use super::fractal::{Fractal, fractal, fractal_stochastic};
 use super::hash::{PRIME, corner};
-use crate::math::split;
+use crate::math::{in_split_range, split, split_in_range};
 
 /// Kernel `k(r) = (1 − r²)³` for `r < 1`, 0 beyond: smooth (C¹ at the support edge, zero
 /// slope) and polynomial in `r²`, so no square root.
@@ -65,11 +65,23 @@ fn r2(f: [f32; 3], q: [f32; 3]) -> f32 {
 /// three slabs (0 for its own).
 #[inline(always)]
 fn block(p: [f32; 3]) -> ([[u32; 3]; 3], [f32; 3], [[f32; 3]; 3]) {
+    if in_split_range(p) {
+        block_with(p, split_in_range)
+    } else {
+        block_with(p, split)
+    }
+}
+
+#[inline(always)]
+fn block_with(
+    p: [f32; 3],
+    sp: impl Fn(f32) -> (i32, f32),
+) -> ([[u32; 3]; 3], [f32; 3], [[f32; 3]; 3]) {
     let mut hp = [[0u32; 3]; 3];
     let mut f = [0.0f32; 3];
     let mut slab = [[0.0f32; 3]; 3];
     for a in 0..3 {
-        let (c, fa) = split(p[a]);
+        let (c, fa) = sp(p[a]);
         let base = (c as u32).wrapping_mul(PRIME[a]);
         hp[a] = [
             base.wrapping_sub(PRIME[a]),

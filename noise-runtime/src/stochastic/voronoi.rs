@@ -7,7 +7,7 @@
 
 use super::estimators::{ONE_BELOW, russian_roulette, sanitize_xi};
 use super::hash::{PRIME, corner, point3};
-use crate::math::{exp_neg, ln, split, sqrt_fast};
+use crate::math::{exp_neg, in_split_range, ln, split, split_in_range, sqrt_fast};
 
 /// The paper's roulette probability of keeping the cheap approximation.
 pub const SMOOTH_VORONOI_Q: f32 = 0.875;
@@ -33,12 +33,22 @@ struct Hood {
 impl Hood {
     #[inline(always)]
     fn new(p: [f32; 3]) -> Hood {
+        // As in Perlin noise: one predictable branch buys the short split for ordinary points.
+        if in_split_range(p) {
+            Hood::with(p, split_in_range)
+        } else {
+            Hood::with(p, split)
+        }
+    }
+
+    #[inline(always)]
+    fn with(p: [f32; 3], sp: impl Fn(f32) -> (i32, f32)) -> Hood {
         let mut h = Hood {
             p: [[0; 3]; 3],
             f: [0.0; 3],
         };
         for a in 0..3 {
-            let (c, f) = split(p[a]);
+            let (c, f) = sp(p[a]);
             let base = (c as u32).wrapping_mul(PRIME[a]);
             h.p[a] = [
                 base.wrapping_sub(PRIME[a]),
