@@ -141,7 +141,9 @@ pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
 /// (eq. 5). `q` is clamped to `[0, 1)`.
 #[inline]
 pub fn smooth_voronoi3_stochastic(p: [f32; 3], seed: u32, q: f32, xi: f32) -> f32 {
-    let h = Hood::new(p);
+    // The general split, not the dispatch of `Hood::new`: with the dispatch here, the
+    // benchmark measured 77 ns against 58.
+    let h = Hood::with(p, split);
     let xi = sanitize_xi(xi) * 8.0;
     let bits = (xi as u32).min(7);
     let rest = (xi - bits as f32).clamp(0.0, ONE_BELOW);
