@@ -235,10 +235,11 @@ pub fn sqrt_f64(x: f64) -> f64 {
 /// [`split`] for callers that have checked `|x| < 2^22` with [`in_split_range`], by a shorter
 /// chain of dependent instructions. The same cell and offset, except that the offset may be
 /// exactly 1 (for a negative `x` within 2^-25 of an integer, where `split` steps to the next
-/// cell with offset 0): the same point, which interpolating callers treat alike. Adding and subtracting 1.5·2^23
-/// rounds `x` to the nearest integer `r` (exact below 2^22); `x − r ∈ [−½, ½]` is exact, and
-/// when it is negative the cell is `r − 1` and the offset `(x − r) + 1`, which rounds the same
-/// real number as `x − (r − 1)`. About 19 cycles from `x` to the offset where truncating,
+/// cell with offset 0): the same point, which interpolating callers treat alike.
+///
+/// Adding and subtracting 1.5·2^23 rounds `x` to the nearest integer `r` (exact below 2^22);
+/// `x − r ∈ [−½, ½]` is exact, and when it is negative the cell is `r − 1` and the offset
+/// `(x − r) + 1`, which rounds the same real number as `x − (r − 1)`. About 19 cycles from `x` to the offset where truncating,
 /// converting back and subtracting took about 28; the estimators, which wait on this chain,
 /// gain the most.
 #[inline(always)]

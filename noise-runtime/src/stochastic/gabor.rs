@@ -94,15 +94,15 @@ fn term(h: u32, i: u32, d: [f32; 3], f0: f32) -> (f32, u32) {
     if r2 >= 1.0 {
         return (0.0, sign);
     }
-    (kernel_at(h, i, [x, y, z], f0), sign)
+    (kernel_at(h, i, [x, y, z], r2, f0), sign)
 }
 
-/// Kernel value of impulse `i` of the cell with hash `h` at offset `v` from the impulse, inside
-/// the support: the envelope times the harmonic along the impulse's own random orientation.
+/// Kernel value of impulse `i` of the cell with hash `h` at offset `v` from the impulse (`r2`
+/// its squared length, which the caller has already computed to test it), inside the support:
+/// the envelope times the harmonic along the impulse's own random orientation.
 #[inline(always)]
-fn kernel_at(h: u32, i: u32, v: [f32; 3], f0: f32) -> f32 {
+fn kernel_at(h: u32, i: u32, v: [f32; 3], r2: f32, f0: f32) -> f32 {
     let [x, y, z] = v;
-    let r2 = x * x + y * y + z * z;
     // Isotropic orientation from a second draw: z uniform in [−1, 1], azimuth uniform.
     let (o, _) = impulse(!h, i);
     let oz = 1.0 - 2.0 * o[0];
@@ -151,18 +151,18 @@ pub fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
     // The sampled impulses inside the kernel's support, compacted without a branch (whether an
     // impulse is inside is a coin flip per cell, which a branch would mispredict half the time);
     // only they pay for the orientation, the exponential and the cosine.
-    let mut live = [(0u32, 0u32, [0.0f32; 3], 0.0f32); 27];
+    let mut live = [(0u32, 0u32, [0.0f32; 3], 0.0f32, 0.0f32); 27];
     let mut m = 0;
     for (c, (h, d)) in r.iter().enumerate() {
         let (q, sign) = impulse(h, idx[c]);
         let x = [d[0] - q[0], d[1] - q[1], d[2] - q[2]];
         let r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
-        live[m] = (h, idx[c], x, flip(0.5 * n[c] as f32, sign));
+        live[m] = (h, idx[c], x, r2, flip(0.5 * n[c] as f32, sign));
         m += (r2 < 1.0) as usize;
     }
     let mut sum = 0.0;
-    for &(h, i, x, w) in &live[..m] {
-        sum += w * kernel_at(h, i, x, f0);
+    for &(h, i, x, r2, w) in &live[..m] {
+        sum += w * kernel_at(h, i, x, r2, f0);
     }
     sum
 }
