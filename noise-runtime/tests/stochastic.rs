@@ -175,8 +175,23 @@ fn perlin_gradient_matches_finite_differences() {
         }
         let (v2, g2) = perlin2_grad([p[0], p[1]], 1);
         assert!((v2 - perlin2([p[0], p[1]], 1)).abs() < 1e-5);
-        let fd = (perlin2([p[0] + h, p[1]], 1) - perlin2([p[0] - h, p[1]], 1)) / (2.0 * h);
-        assert!((fd - g2[0]).abs() < 0.02);
+        for a in 0..2 {
+            let (mut lo, mut hi) = ([p[0], p[1]], [p[0], p[1]]);
+            lo[a] -= h;
+            hi[a] += h;
+            let fd = (perlin2(hi, 1) - perlin2(lo, 1)) / (2.0 * h);
+            assert!((fd - g2[a]).abs() < 0.02, "2D axis {a}: fd {fd} vs {}", g2[a]);
+        }
+        let p4 = [p[0], p[1], p[2], rng.unit() * 10.0 - 5.0];
+        let (v4, g4) = perlin4_grad(p4, 1);
+        assert!((v4 - perlin4(p4, 1)).abs() < 1e-5, "{v4} vs {}", perlin4(p4, 1));
+        for a in 0..4 {
+            let (mut lo, mut hi) = (p4, p4);
+            lo[a] -= h;
+            hi[a] += h;
+            let fd = (perlin4(hi, 1) - perlin4(lo, 1)) / (2.0 * h);
+            assert!((fd - g4[a]).abs() < 0.02, "4D axis {a}: fd {fd} vs {}", g4[a]);
+        }
     }
 }
 
@@ -261,6 +276,7 @@ fn hard_cases_are_finite() {
                 perlin3_stochastic(p, 1, x),
                 perlin4([c, 1.5, c, 0.2], 1),
                 perlin4_stochastic([c, 1.5, c, 0.2], 1, x),
+                perlin4_grad([c, 1.5, c, 0.2], 1).0,
                 simplex3(p, 1),
                 simplex3_stochastic(p, 1, x),
                 sparse_conv3(p, 10, 1),
@@ -274,6 +290,7 @@ fn hard_cases_are_finite() {
                 worley3_f1(p, 1),
             ];
             vals.extend(perlin3_grad(p, 1).1);
+            vals.extend(perlin4_grad([c, 1.5, c, 0.2], 1).1);
             for f in fracs {
                 vals.push(fbm3(p, f, 1));
                 vals.push(fbm3_stochastic(p, f, 1, x));

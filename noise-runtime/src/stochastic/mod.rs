@@ -46,7 +46,7 @@ pub use gabor::{Gabor, gabor3, gabor3_stochastic};
 pub use hash::{hash2, hash3, hash4};
 pub use perlin::{
     perlin2, perlin2_grad, perlin2_stochastic, perlin3, perlin3_grad, perlin3_grad_cell,
-    perlin3_stochastic, perlin4, perlin4_stochastic,
+    perlin3_stochastic, perlin4, perlin4_grad, perlin4_stochastic,
 };
 pub use simplex::{simplex3, simplex3_stochastic};
 pub use sparse::{

@@ -283,6 +283,42 @@ pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
     vals[0]
 }
 
+/// 4D Perlin noise and its analytic gradient `(∂n/∂x, ∂n/∂y, ∂n/∂z, ∂n/∂w)`: the value is
+/// `Σ_c (Π_a w_a(c)) · g_c·(f − c)` over the 16 corners, with `w_a` the fade weight of axis `a`
+/// (`fade(f_a)` on the upper side, `1 − fade(f_a)` on the lower), so by the product rule
+/// `∂n/∂a = Σ_c ±dfade(f_a) · Π_(b≠a) w_b · g_c·(f − c) + Π_b w_b · g_c[a]`.
+pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
+    let mut cell = [0i32; 4];
+    let mut f = [0.0f32; 4];
+    for a in 0..4 {
+        (cell[a], f[a]) = split(p[a]);
+    }
+    let u = f.map(fade);
+    let du = f.map(dfade);
+    let mut n = 0.0;
+    let mut d = [0.0f32; 4];
+    for c in 0..16usize {
+        let b: [i32; 4] = core::array::from_fn(|a| ((c >> a) & 1) as i32);
+        let g = g4(hash4(
+            cell[0].wrapping_add(b[0]),
+            cell[1].wrapping_add(b[1]),
+            cell[2].wrapping_add(b[2]),
+            cell[3].wrapping_add(b[3]),
+            seed,
+        ));
+        let dot: f32 = (0..4).map(|a| g[a] * (f[a] - b[a] as f32)).sum();
+        let w: [f32; 4] = core::array::from_fn(|a| if b[a] == 1 { u[a] } else { 1.0 - u[a] });
+        let s: [f32; 4] = core::array::from_fn(|a| if b[a] == 1 { du[a] } else { -du[a] });
+        let weight = w[0] * w[1] * w[2] * w[3];
+        n += weight * dot;
+        for a in 0..4 {
+            let others: f32 = (0..4).filter(|&o| o != a).map(|o| w[o]).product();
+            d[a] += s[a] * others * dot + weight * g[a];
+        }
+    }
+    (n, d)
+}
+
 /// One-sample estimator of [`perlin4`]: one gradient instead of sixteen.
 pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     let mut cell = [0i32; 4];
