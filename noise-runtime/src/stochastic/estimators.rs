@@ -103,6 +103,12 @@ impl Corner {
         ((self.0 >> (3 - a)) & 1) as i32
     }
 
+    /// The corner as a number in `0..16`: bit `3 − a` set when axis `a` took its upper side.
+    #[inline(always)]
+    pub(crate) fn index(self) -> usize {
+        self.0 as usize & 15
+    }
+
     /// 1.0 if axis `a` took its upper side, else 0.0, without a branch.
     #[inline(always)]
     pub(crate) fn float(self, a: usize) -> f32 {

@@ -242,13 +242,29 @@ fn perlin3_stochastic_with(p: [f32; 3], seed: u32, xi: f32, sp: impl Fn(f32) -> 
     let (ix, x) = sp(p[0]);
     let (iy, y) = sp(p[1]);
     let (iz, z) = sp(p[2]);
+    // The gradient index of all eight corners while the corner is being chosen (they depend
+    // only on the cell), packed four bits each into one register: once it is, a shift picks
+    // the chosen one. Hashing after the choice put two multiplies on the chain that the
+    // estimator waits on, and LLVM vectorised them into emulated 32-bit SIMD multiplies,
+    // slower still. Corner `k` is numbered as `Corner::index() / 2`: bit `2 − a` set when axis
+    // `a` takes its upper side.
+    let xp0 = (ix as u32).wrapping_mul(PRIME[0]);
+    let yp0 = (iy as u32).wrapping_mul(PRIME[1]);
+    let zp0 = (iz as u32).wrapping_mul(PRIME[2]);
+    let (xp1, yp1, zp1) = (
+        xp0.wrapping_add(PRIME[0]),
+        yp0.wrapping_add(PRIME[1]),
+        zp0.wrapping_add(PRIME[2]),
+    );
+    let mut packed = 0u32;
+    for k in 0..8 {
+        let xp = if k & 4 != 0 { xp1 } else { xp0 };
+        let yp = if k & 2 != 0 { yp1 } else { yp0 };
+        let zp = if k & 1 != 0 { zp1 } else { zp0 };
+        packed |= (corner(seed, xp, yp, zp) >> 28) << (4 * k);
+    }
     let c = nested_corner(xi, [fade(x), fade(y), fade(z)]);
-    let g = g3(corner(
-        seed,
-        (ix.wrapping_add(c.int(0)) as u32).wrapping_mul(PRIME[0]),
-        (iy.wrapping_add(c.int(1)) as u32).wrapping_mul(PRIME[1]),
-        (iz.wrapping_add(c.int(2)) as u32).wrapping_mul(PRIME[2]),
-    ));
+    let g = GRAD3[((packed >> (2 * c.index())) & 15) as usize];
     g[0] * (x - c.float(0)) + g[1] * (y - c.float(1)) + g[2] * (z - c.float(2))
 }
 
