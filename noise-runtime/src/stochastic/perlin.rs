@@ -154,6 +154,24 @@ pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
     }
 }
 
+/// The hash products of a 3D cell's corners, per axis: `i·PRIME[a]` on the lower side and
+/// `(i + 1)·PRIME[a] = i·PRIME[a] + PRIME[a]` on the upper. A corner's hash is then one xor
+/// and one multiply ([`corner`]).
+#[inline(always)]
+fn cell_products(ix: i32, iy: i32, iz: i32) -> ([u32; 3], [u32; 3]) {
+    let xp = (ix as u32).wrapping_mul(PRIME[0]);
+    let yp = (iy as u32).wrapping_mul(PRIME[1]);
+    let zp = (iz as u32).wrapping_mul(PRIME[2]);
+    (
+        [xp, yp, zp],
+        [
+            xp.wrapping_add(PRIME[0]),
+            yp.wrapping_add(PRIME[1]),
+            zp.wrapping_add(PRIME[2]),
+        ],
+    )
+}
+
 #[inline(always)]
 fn perlin3_with(p: [f32; 3], seed: u32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
     let (ix, x) = sp(p[0]);
@@ -161,19 +179,11 @@ fn perlin3_with(p: [f32; 3], seed: u32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
     let (iz, z) = sp(p[2]);
     let (u, v, w) = (fade(x), fade(y), fade(z));
     let (x1, y1, z1) = (x - 1.0, y - 1.0, z - 1.0);
-    let xp0 = (ix as u32).wrapping_mul(PRIME[0]);
-    let yp0 = (iy as u32).wrapping_mul(PRIME[1]);
-    let zp0 = (iz as u32).wrapping_mul(PRIME[2]);
-    let (xp1, yp1, zp1) = (
-        xp0.wrapping_add(PRIME[0]),
-        yp0.wrapping_add(PRIME[1]),
-        zp0.wrapping_add(PRIME[2]),
-    );
+    let ([ix, iy, iz], [ix1, iy1, iz1]) = cell_products(ix, iy, iz);
     let c = |xp: u32, yp: u32, zp: u32, dx: f32, dy: f32, dz: f32| {
         let g = g3(corner(seed, xp, yp, zp));
         g[0] * dx + g[1] * dy + g[2] * dz
     };
-    let (ix, iy, iz, ix1, iy1, iz1) = (xp0, yp0, zp0, xp1, yp1, zp1);
     lerp(
         w,
         lerp(
@@ -248,14 +258,7 @@ fn perlin3_stochastic_with(p: [f32; 3], seed: u32, xi: f32, sp: impl Fn(f32) -> 
     // estimator waits on, and LLVM vectorised them into emulated 32-bit SIMD multiplies,
     // slower still. Corner `k` is numbered as `Corner::index() / 2`: bit `2 − a` set when axis
     // `a` takes its upper side.
-    let xp0 = (ix as u32).wrapping_mul(PRIME[0]);
-    let yp0 = (iy as u32).wrapping_mul(PRIME[1]);
-    let zp0 = (iz as u32).wrapping_mul(PRIME[2]);
-    let (xp1, yp1, zp1) = (
-        xp0.wrapping_add(PRIME[0]),
-        yp0.wrapping_add(PRIME[1]),
-        zp0.wrapping_add(PRIME[2]),
-    );
+    let ([xp0, yp0, zp0], [xp1, yp1, zp1]) = cell_products(ix, iy, iz);
     let mut packed = 0u32;
     for k in 0..8 {
         let xp = if k & 4 != 0 { xp1 } else { xp0 };
