@@ -271,24 +271,37 @@ fn perlin3_stochastic_with(p: [f32; 3], seed: u32, xi: f32, sp: impl Fn(f32) -> 
     g[0] * (x - c.float(0)) + g[1] * (y - c.float(1)) + g[2] * (z - c.float(2))
 }
 
-/// 4D Perlin noise (e.g. 3D noise animated over time).
-pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
+/// The cell and offset of a 4D point, per axis ([`split`]).
+#[inline(always)]
+fn split4(p: [f32; 4]) -> ([i32; 4], [f32; 4]) {
     let mut cell = [0i32; 4];
     let mut f = [0.0f32; 4];
     for a in 0..4 {
         (cell[a], f[a]) = split(p[a]);
     }
+    (cell, f)
+}
+
+/// The gradient at corner `cell + b` (`b` of 0s and 1s) of 4D noise.
+#[inline(always)]
+fn grad4(cell: [i32; 4], b: [i32; 4], seed: u32) -> [f32; 4] {
+    g4(hash4(
+        cell[0].wrapping_add(b[0]),
+        cell[1].wrapping_add(b[1]),
+        cell[2].wrapping_add(b[2]),
+        cell[3].wrapping_add(b[3]),
+        seed,
+    ))
+}
+
+/// 4D Perlin noise (e.g. 3D noise animated over time).
+pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
+    let (cell, f) = split4(p);
     let u = f.map(fade);
     let mut vals = [0.0f32; 16];
     for (c, v) in vals.iter_mut().enumerate() {
         let b: [i32; 4] = core::array::from_fn(|a| ((c >> a) & 1) as i32);
-        let g = g4(hash4(
-            cell[0].wrapping_add(b[0]),
-            cell[1].wrapping_add(b[1]),
-            cell[2].wrapping_add(b[2]),
-            cell[3].wrapping_add(b[3]),
-            seed,
-        ));
+        let g = grad4(cell, b, seed);
         *v = (0..4).map(|a| g[a] * (f[a] - b[a] as f32)).sum();
     }
     // Collapse one axis at a time: x pairs first, then y, z, w.
@@ -307,24 +320,14 @@ pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
 /// (`fade(f_a)` on the upper side, `1 − fade(f_a)` on the lower), so by the product rule
 /// `∂n/∂a = Σ_c ±dfade(f_a) · Π_(b≠a) w_b · g_c·(f − c) + Π_b w_b · g_c[a]`.
 pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
-    let mut cell = [0i32; 4];
-    let mut f = [0.0f32; 4];
-    for a in 0..4 {
-        (cell[a], f[a]) = split(p[a]);
-    }
+    let (cell, f) = split4(p);
     let u = f.map(fade);
     let du = f.map(dfade);
     let mut n = 0.0;
     let mut d = [0.0f32; 4];
     for c in 0..16usize {
         let b: [i32; 4] = core::array::from_fn(|a| ((c >> a) & 1) as i32);
-        let g = g4(hash4(
-            cell[0].wrapping_add(b[0]),
-            cell[1].wrapping_add(b[1]),
-            cell[2].wrapping_add(b[2]),
-            cell[3].wrapping_add(b[3]),
-            seed,
-        ));
+        let g = grad4(cell, b, seed);
         let dot: f32 = (0..4).map(|a| g[a] * (f[a] - b[a] as f32)).sum();
         let w: [f32; 4] = core::array::from_fn(|a| if b[a] == 1 { u[a] } else { 1.0 - u[a] });
         let s: [f32; 4] = core::array::from_fn(|a| if b[a] == 1 { du[a] } else { -du[a] });
@@ -340,17 +343,8 @@ pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 
 /// One-sample estimator of [`perlin4`]: one gradient instead of sixteen.
 pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    let mut cell = [0i32; 4];
-    let mut f = [0.0f32; 4];
-    for a in 0..4 {
-        (cell[a], f[a]) = split(p[a]);
-    }
+    let (cell, f) = split4(p);
     let c = nested_corner(xi, f.map(fade));
-    let mut o = [0.0f32; 4];
-    for a in 0..4 {
-        cell[a] = cell[a].wrapping_add(c.int(a));
-        o[a] = f[a] - c.float(a);
-    }
-    let g = g4(hash4(cell[0], cell[1], cell[2], cell[3], seed));
-    g[0] * o[0] + g[1] * o[1] + g[2] * o[2] + g[3] * o[3]
+    let g = grad4(cell, core::array::from_fn(|a| c.int(a)), seed);
+    (0..4).map(|a| g[a] * (f[a] - c.float(a))).sum()
 }
