@@ -3,12 +3,15 @@
 //! `±(i + ½)/n_c` and an isotropic random orientation ω, and contributes the Gabor kernel
 //! `e^(−π a² r²) cos(2π F₀ ω·(p − p_i))`, truncated at `r = 1` (the cell size). The estimator
 //! samples one impulse per cell with probability `(2i + 1)/n_c²`.
+//!
+//! [`GaborNoise`] is the form to keep in a renderer: the parameters prepared once. The free
+//! functions [`gabor3`] and [`gabor3_stochastic`] prepare them on every call.
 
 use super::estimators::sanitize_xi;
-use super::sparse::{Reach, cells, flip, importance_index, impulse, rotate};
+use super::sparse::{Reach, flip, importance_index, impulse, rotate, unit_bits};
 use crate::math::{cos_turns, exp_neg, sqrt_fast};
 
-/// Gabor noise parameters.
+/// Gabor noise parameters ([`GaborNoise::new`] prepares them for evaluation).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gabor {
     /// Mean impulses per cell (λ), clamped to `[0.1, 32]`.
@@ -47,10 +50,14 @@ impl Gabor {
     }
 }
 
-/// The CDF of the Poisson distribution with mean λ at `0..63`, built once per call so each
-/// cell's count is a branch-free binary search instead of an inversion loop (a division per
-/// step and a mispredicted exit per cell).
-struct PoissonCdf([f32; 63]);
+/// The CDF of the Poisson distribution with mean λ at `0..63`, built once per call of the free
+/// functions (once per [`GaborNoise`]) so each cell's count is a branch-free binary search
+/// instead of an inversion loop (a division per step and a mispredicted exit per cell).
+///
+/// Entries 63 and 64 are 2, above every `u`: [`PoissonGuide`] reads up to two entries past a
+/// count of 63.
+#[derive(Clone, Debug)]
+struct PoissonCdf([f32; 65]);
 
 impl PoissonCdf {
     /// `e_lambda = e^(−λ)`. The terms are those of sequential inversion, `p_k = p_(k−1)·λ/k`.
@@ -64,7 +71,9 @@ impl PoissonCdf {
             cdf += p;
             *slot = cdf;
         }
-        PoissonCdf(t)
+        let mut padded = [2.0f32; 65];
+        padded[..63].copy_from_slice(&t);
+        PoissonCdf(padded)
     }
 
     /// The smallest `k` with `u ≤ CDF(k)`, at most 63 (inversion of the uniform `u`): the
@@ -111,27 +120,156 @@ fn kernel_at(h: u32, i: u32, v: [f32; 3], r2: f32, f0: f32) -> f32 {
     exp_neg(-PI_A2 * r2) * cos_turns(f0 * (ox * x + oy * y + oz * z))
 }
 
+/// The uniform that sets a cell's impulse count, as 24 bits `U` (`u = U / 2^24`).
+#[inline(always)]
+fn count_bits(h: u32) -> u32 {
+    h.wrapping_mul(0x2c1b_3c6d) >> 8
+}
+
+#[inline(always)]
+fn unit(bits: u32) -> f32 {
+    bits as i32 as f32 * (1.0 / 16_777_216.0)
+}
+
 /// Impulse count of a cell (Poisson with mean λ).
 #[inline(always)]
 fn count(h: u32, cdf: &PoissonCdf) -> u32 {
-    cdf.sample((h.wrapping_mul(0x2c1b_3c6d) >> 8) as i32 as f32 * (1.0 / 16_777_216.0))
+    cdf.sample(unit(count_bits(h)))
 }
 
-/// 3D Gabor noise: `Σ_c Σ_i ±(i + ½)/n_c · K_i(p)`.
+/// Bins of the guide table: `u` by its top 12 bits.
+const GUIDE_BITS: u32 = 12;
+
+/// A guide table (Chen & Asau's indexed search) over [`PoissonCdf`]: for each of 4096 bins of
+/// `u`, the count at the bin's start, or [`PoissonGuide::FULL`] when the bin holds more than two
+/// CDF entries (only in the far tails: for λ ≤ 8 the last bin alone, `u > 1 − 2^-12`; for λ = 32 two). A count is
+/// then one table read and two compares instead of six dependent halvings, and the same count
+/// for every `u`: within a bin it is at least the start's `lo` and at most the end's, at most
+/// `lo + 2`, and each entry from `lo` on that lies below `u` adds one.
+#[derive(Clone, Debug)]
+struct PoissonGuide {
+    cdf: PoissonCdf,
+    lo: [u8; 1 << GUIDE_BITS],
+}
+
+impl PoissonGuide {
+    /// Marks a bin whose count the binary search finds.
+    const FULL: u8 = 0xff;
+
+    /// One sweep over bins and CDF together: both ends of a bin only move up, so the counts
+    /// at them ([`PoissonCdf::sample`], the number of entries below `u`) are found by walking
+    /// two cursors, 4096 + 63 steps instead of 8192 searches.
+    fn new(cdf: PoissonCdf) -> Self {
+        let mut lo = [0u8; 1 << GUIDE_BITS];
+        let shift = 24 - GUIDE_BITS;
+        let below = |mut k: usize, u: f32| {
+            while k < 63 && cdf.0[k] < u {
+                k += 1;
+            }
+            k
+        };
+        let (mut first, mut last) = (0, 0);
+        for (j, slot) in lo.iter_mut().enumerate() {
+            first = below(first, unit((j as u32) << shift));
+            last = below(last.max(first), unit(((j as u32 + 1) << shift) - 1));
+            *slot = if last - first <= 2 {
+                first as u8
+            } else {
+                Self::FULL
+            };
+        }
+        PoissonGuide { cdf, lo }
+    }
+
+    /// The count of [`count`] when the second value is false; when it is true (a bin in the
+    /// far tail) the first is meaningless and [`PoissonGuide::count`] must be used. Without a
+    /// branch, so that a pass over all cells needs just one test at its end.
+    #[inline(always)]
+    fn count_or_full(&self, h: u32) -> (u32, bool) {
+        let bits = count_bits(h);
+        let u = unit(bits);
+        let lo = self.lo[(bits >> (24 - GUIDE_BITS)) as usize];
+        let k = (lo & 63) as usize;
+        let n = k as u32 + (u > self.cdf.0[k]) as u32 + (u > self.cdf.0[k + 1]) as u32;
+        (n, lo == Self::FULL)
+    }
+
+    /// The same count as [`count`].
+    #[inline(always)]
+    fn count(&self, h: u32) -> u32 {
+        match self.count_or_full(h) {
+            (n, false) => n,
+            (_, true) => count(h, &self.cdf),
+        }
+    }
+}
+
+/// Gabor noise with its parameters sanitised and its Poisson tables built: what a renderer
+/// keeps and evaluates many times. [`gabor3`] and [`gabor3_stochastic`] build a CDF on every
+/// call (63 running sums, a chain of dependent multiplies and adds) and search it for each
+/// cell's count; a `GaborNoise` builds it once, with a guide table that finds a count in one
+/// read. Same values, bit for bit.
+///
+/// ```
+/// use noise_runtime::stochastic::{Gabor, GaborNoise, gabor3};
+/// let noise = GaborNoise::new(Gabor::default());
+/// let p = [1.25, -3.5, 0.75];
+/// assert_eq!(noise.sample(p, 7), gabor3(p, Gabor::default(), 7));
+/// // One sample of the estimator; its mean over ξ is `noise.sample(p, 7)`.
+/// let estimate = noise.sample_stochastic(p, 7, 0.3);
+/// assert!(estimate.is_finite());
+/// ```
+#[derive(Clone, Debug)]
+pub struct GaborNoise {
+    guide: PoissonGuide,
+    f0: f32,
+}
+
+impl GaborNoise {
+    /// Sanitises `g` (see [`Gabor`]) and builds its Poisson tables (about 10 µs:
+    /// build it once, not per sample).
+    pub fn new(g: Gabor) -> Self {
+        let (lambda, f0) = g.sane();
+        GaborNoise {
+            guide: PoissonGuide::new(PoissonCdf::new(lambda, exp_neg(-lambda))),
+            f0,
+        }
+    }
+
+    /// 3D Gabor noise (see [`gabor3`]).
+    #[inline]
+    pub fn sample(&self, p: [f32; 3], seed: u32) -> f32 {
+        sum(p, seed, self.f0, |h| self.guide.count(h))
+    }
+
+    /// One-sample estimator of [`GaborNoise::sample`] (see [`gabor3_stochastic`]).
+    #[inline]
+    pub fn sample_stochastic(&self, p: [f32; 3], seed: u32, xi: f32) -> f32 {
+        let guide = &self.guide;
+        estimate(
+            p,
+            seed,
+            xi,
+            self.f0,
+            |h| guide.count_or_full(h),
+            |h| guide.count(h),
+        )
+    }
+}
+
+impl From<Gabor> for GaborNoise {
+    fn from(g: Gabor) -> Self {
+        GaborNoise::new(g)
+    }
+}
+
+/// 3D Gabor noise: `Σ_c Σ_i ±(i + ½)/n_c · K_i(p)`. To evaluate the same parameters many
+/// times, build a [`GaborNoise`] once.
 #[inline]
 pub fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
     let (lambda, f0) = g.sane();
     let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
-    let mut sum = 0.0;
-    cells(p, seed, |h, d| {
-        let n = count(h, &cdf);
-        let inv = 1.0 / n.max(1) as f32;
-        for i in 0..n {
-            let (k, s) = term(h, i, d, f0);
-            sum += flip((i as f32 + 0.5) * inv * k, s);
-        }
-    });
-    sum
+    sum(p, seed, f0, |h| count(h, &cdf))
 }
 
 /// One-sample estimator of [`gabor3`]: one importance-sampled impulse per cell, weighted by
@@ -140,12 +278,51 @@ pub fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
 pub fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
     let (lambda, f0) = g.sane();
     let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
-    let xi = sanitize_xi(xi);
+    let count = |h| count(h, &cdf);
+    estimate(p, seed, xi, f0, |h| (count(h), false), count)
+}
+
+/// The deterministic sum, with `count` giving a cell's impulse count from its hash.
+#[inline(always)]
+fn sum(p: [f32; 3], seed: u32, f0: f32, count: impl Fn(u32) -> u32) -> f32 {
+    let mut sum = 0.0;
+    for (h, d) in Reach::new(p, seed).iter() {
+        let n = count(h);
+        let inv = 1.0 / n.max(1) as f32;
+        for i in 0..n {
+            let (k, s) = term(h, i, d, f0);
+            sum += flip((i as f32 + 0.5) * inv * k, s);
+        }
+    }
+    sum
+}
+
+/// The estimator. A cell's impulse count is `fast(h)` unless that flags the cell (a guide
+/// table's far tail; see [`PoissonGuide::count_or_full`]), and then `exact(h)`: all counts
+/// first without a branch, then one test.
+#[inline(always)]
+fn estimate(
+    p: [f32; 3],
+    seed: u32,
+    xi: f32,
+    f0: f32,
+    fast: impl Fn(u32) -> (u32, bool),
+    exact: impl Fn(u32) -> u32,
+) -> f32 {
+    let xi = unit_bits(sanitize_xi(xi));
     let r = Reach::new(p, seed);
     // Every cell's impulse count and sampled impulse first, in fixed-length passes without
-    // branches, so the kernel evaluations below do not each wait on a Poisson search and a
-    // square root. A cell without impulses samples impulse 0 with weight 0.
-    let n: [u32; 27] = core::array::from_fn(|c| count(r.hash[c], &cdf));
+    // branches, so the kernel evaluations below do not each wait on a count and an index. A
+    // cell without impulses samples impulse 0 with weight 0.
+    let mut full = false;
+    let mut n: [u32; 27] = core::array::from_fn(|c| {
+        let (n, f) = fast(r.hash[c]);
+        full |= f;
+        n
+    });
+    if full {
+        n = r.hash.map(exact);
+    }
     let idx: [u32; 27] =
         core::array::from_fn(|c| importance_index(rotate(xi, r.hash[c]), n[c].max(1)));
     // The sampled impulses inside the kernel's support, compacted without a branch (whether an
@@ -190,7 +367,7 @@ mod tests {
     fn plain_estimate(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
         let (lambda, f0) = g.sane();
         let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
-        let xi = sanitize_xi(xi);
+        let xi = unit_bits(sanitize_xi(xi));
         let mut sum = 0.0;
         for (h, d) in Reach::new(p, seed).iter() {
             let n = count(h, &cdf);
@@ -230,5 +407,75 @@ mod tests {
             nonzero += (fast != 0.0) as u32;
         }
         assert!(nonzero > 3000, "{nonzero}");
+    }
+
+    #[test]
+    fn guide_table_counts_exactly_as_the_binary_search_for_every_u() {
+        for lambda in [0.1f32, 1.0, 8.0, 32.0] {
+            let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
+            let guide = PoissonGuide::new(cdf.clone());
+            let mut full = 0;
+            // Every 24-bit uniform: `count_bits` reaches each exactly once as `h` runs over
+            // the odd multiples of the inverse of its multiplier, but a direct sweep is simpler.
+            for bits in 0..1u32 << 24 {
+                let exact = cdf.sample(unit(bits));
+                let lo = guide.lo[(bits >> (24 - GUIDE_BITS)) as usize];
+                if lo == PoissonGuide::FULL {
+                    full += 1;
+                    continue;
+                }
+                let k = lo as usize;
+                let u = unit(bits);
+                let n = k as u32 + (u > guide.cdf.0[k]) as u32 + (u > guide.cdf.0[k + 1]) as u32;
+                assert_eq!(n, exact, "λ {lambda}, U {bits:#x}");
+            }
+            // The binary search takes over only in the far tails.
+            assert!(full <= 4 << (24 - GUIDE_BITS), "λ {lambda}: {full}");
+        }
+    }
+
+    #[test]
+    fn prepared_noise_is_the_free_functions_bit_for_bit() {
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / 16_777_216.0
+        };
+        for g in [
+            Gabor::default(),
+            Gabor {
+                impulses: 0.1,
+                frequency: 0.5,
+            },
+            Gabor {
+                impulses: 32.0,
+                frequency: 9.0,
+            },
+        ] {
+            let noise = GaborNoise::new(g);
+            let (mut full, mut cells) = (0, 0);
+            for _ in 0..3000 {
+                let p = [
+                    next() * 64.0 - 32.0,
+                    next() * 64.0 - 32.0,
+                    next() * 64.0 - 32.0,
+                ];
+                let xi = next();
+                assert_eq!(noise.sample(p, 5).to_bits(), gabor3(p, g, 5).to_bits());
+                assert_eq!(
+                    noise.sample_stochastic(p, 5, xi).to_bits(),
+                    gabor3_stochastic(p, g, 5, xi).to_bits(),
+                    "{g:?} {p:?} ξ {xi}"
+                );
+                for (h, _) in Reach::new(p, 5).iter() {
+                    cells += 1;
+                    full += noise.guide.count_or_full(h).1 as u32;
+                }
+            }
+            // The far-tail path (about one cell in 4096) was taken too.
+            assert!(full > 0, "{g:?}: no cell in a far-tail bin among {cells}");
+        }
     }
 }

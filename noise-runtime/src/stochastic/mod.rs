@@ -42,7 +42,7 @@ pub use estimators::{
     ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
 };
 pub use fractal::{Fractal, fbm3, fbm3_stochastic, fractal, fractal_stochastic};
-pub use gabor::{Gabor, gabor3, gabor3_stochastic};
+pub use gabor::{Gabor, GaborNoise, gabor3, gabor3_stochastic};
 pub use hash::{hash2, hash3, hash4};
 pub use perlin::{
     perlin2, perlin2_grad, perlin2_stochastic, perlin3, perlin3_grad, perlin3_grad_cell,

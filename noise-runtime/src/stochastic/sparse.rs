@@ -43,13 +43,18 @@ pub(crate) fn flip(v: f32, sign: u32) -> f32 {
     f32::from_bits(v.to_bits() ^ sign)
 }
 
-/// ξ rotated by the cell hash `h` (Cranley–Patterson) on the 2^-24 grid, in `[0, 1)`: integer
+/// A uniform `u ∈ [0, 1)` as its 24 bits `U` on the 2^-24 grid (`u = U / 2^24`).
+#[inline(always)]
+pub(crate) fn unit_bits(u: f32) -> u32 {
+    ((u * 16_777_216.0) as u32).min(0x00ff_ffff)
+}
+
+/// ξ (as [`unit_bits`]) rotated by the cell hash `h` (Cranley–Patterson), modulo 1: an integer
 /// addition modulo 2^24 instead of a float compare-and-subtract, whose branch would mispredict
 /// on half the cells.
 #[inline(always)]
-pub(crate) fn rotate(xi: f32, h: u32) -> f32 {
-    let u = ((xi * 16_777_216.0) as u32).wrapping_add(h >> 8) & 0x00ff_ffff;
-    u as f32 * (1.0 / 16_777_216.0)
+pub(crate) fn rotate(xi_bits: u32, h: u32) -> u32 {
+    xi_bits.wrapping_add(h >> 8) & 0x00ff_ffff
 }
 
 #[inline(always)]
@@ -173,10 +178,9 @@ pub fn sparse_conv3(p: [f32; 3], n: u32, seed: u32) -> f32 {
 #[inline]
 pub fn sparse_conv3_stochastic(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
     let n = n.clamp(1, 64);
-    let xi = sanitize_xi(xi);
+    let xi = unit_bits(sanitize_xi(xi));
     let r = Reach::new(p, seed);
-    // The impulse of every cell first, in one fixed-length pass without branches (which LLVM
-    // vectorises), so the impulse evaluations below do not each wait on a square root.
+    // The impulse of every cell first, in one fixed-length pass without branches.
     let idx: [u32; 27] = core::array::from_fn(|c| importance_index(rotate(xi, r.hash[c]), n));
     let mut sum = 0.0;
     for ((h, d), &i) in r.iter().zip(&idx) {
@@ -186,21 +190,34 @@ pub fn sparse_conv3_stochastic(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
     0.5 * sum
 }
 
-/// The impulse `i = ⌊n √u⌋` (probability `(2i + 1)/n²` for uniform `u ∈ [0, 1)`, eq. 8),
-/// branch-free: `√u` as `u · 1/√u` from the bit-level first guess and three Newton steps
-/// (relative error below 3e-7), with `u` kept away from 0.
+/// The impulse `i = ⌊n √u⌋` of `n ≤ 64` (probability `(2i + 1)/n²` for uniform `u ∈ [0, 1)`,
+/// eq. 8), with `u` given as its 24 bits `U`, exactly and without a square root: `⌊√x⌋ =
+/// ⌊√⌊x⌋⌋`, so `i = ⌊√⌊n² u⌋⌋`, where `⌊n² u⌋ = n²U >> 24` is below `n² ≤ 4096` and its
+/// integer square root one read of [`ISQRT`]. (A float square root by Newton steps took about
+/// 90 ns of a stochastic Gabor call, this takes about 15, and its rounding could move `i` by
+/// one near the boundaries.)
 #[inline(always)]
-pub(crate) fn importance_index(u: f32, n: u32) -> u32 {
-    let v = u.max(1e-30);
-    let mut y = f32::from_bits(0x5f37_5a86u32.wrapping_sub(v.to_bits() >> 1));
-    let h = 0.5 * v;
-    y *= 1.5 - h * y * y;
-    y *= 1.5 - h * y * y;
-    y *= 1.5 - h * y * y;
-    // `as i32`: the product is in [0, n], and the signed conversion is one instruction where
-    // the unsigned one branches.
-    ((n as f32 * (u * y)) as i32 as u32).min(n - 1)
+pub(crate) fn importance_index(u_bits: u32, n: u32) -> u32 {
+    debug_assert!((1..=64).contains(&n) && u_bits < 1 << 24);
+    let w = ((n * n) as u64 * u_bits as u64) >> 24;
+    // The mask changes nothing (w < n² ≤ 4096) but spares the bounds check.
+    ISQRT[w as usize & 4095] as u32
 }
+
+/// `ISQRT[w] = ⌊√w⌋`.
+static ISQRT: [u8; 4096] = {
+    let mut t = [0u8; 4096];
+    let mut r = 0usize;
+    let mut w = 0;
+    while w < 4096 {
+        if (r + 1) * (r + 1) <= w {
+            r += 1;
+        }
+        t[w] = r as u8;
+        w += 1;
+    }
+    t
+};
 
 #[inline(always)]
 fn octave_seed(seed: u32, o: u32) -> u32 {
@@ -261,7 +278,7 @@ pub fn sparse_conv3_stochastic1(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 
         f[1] + 1.0 - j as f32,
         f[2] + 1.0 - k as f32,
     ];
-    let (q, s) = impulse(h, importance_index(rest, n));
+    let (q, s) = impulse(h, importance_index(unit_bits(rest), n));
     flip(0.5 * count as f32 * kernel(r2(d, q)), s)
 }
 
@@ -271,4 +288,46 @@ pub fn fbm_sparse_conv3_stochastic1(p: [f32; 3], f: Fractal, n: u32, seed: u32, 
     fractal_stochastic(p, f, xi, |q, o, x| {
         sparse_conv3_stochastic1(q, n, octave_seed(seed, o), x)
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn importance_index_is_exactly_floor_n_sqrt_u() {
+        const ONE: u64 = 1 << 24;
+        for n in 1..=64u32 {
+            let n2 = (n * n) as u64;
+            // The first U of impulse k is ⌈k²·2^24 / n²⌉: there the index steps from k − 1 to k.
+            for k in 1..n as u64 {
+                let first = (k * k * ONE).div_ceil(n2) as u32;
+                assert_eq!(importance_index(first, n), k as u32, "n {n}, k {k}");
+                assert_eq!(importance_index(first - 1, n), k as u32 - 1, "n {n}, k {k}");
+            }
+            assert_eq!(importance_index(0, n), 0);
+            assert_eq!(importance_index((ONE - 1) as u32, n), n - 1);
+        }
+        // And so impulse i is drawn by (2i + 1)/n² of all 2^24 values, to one value per step.
+        let n = 10u32;
+        let mut hist = [0u32; 10];
+        for u in 0..1u32 << 24 {
+            hist[importance_index(u, n) as usize] += 1;
+        }
+        for (i, &c) in hist.iter().enumerate() {
+            let want = (2 * i + 1) as f64 / 100.0 * ONE as f64;
+            assert!((c as f64 - want).abs() <= 1.0, "i {i}: {c} vs {want}");
+        }
+    }
+
+    #[test]
+    fn unit_bits_keeps_the_top_of_the_interval_inside() {
+        assert_eq!(unit_bits(0.0), 0);
+        assert_eq!(unit_bits(0.5), 1 << 23);
+        assert_eq!(
+            unit_bits(super::super::estimators::ONE_BELOW),
+            (1 << 24) - 1
+        );
+        assert_eq!(unit_bits(1.0), (1 << 24) - 1);
+    }
 }
