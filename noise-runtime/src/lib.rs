@@ -9,8 +9,43 @@
 //!   huge coordinates, optionally animated per frame.
 //! - [`sequence`]: the R2 and golden-ratio sequences in 64-bit fixed point.
 //! - [`warp`]: from uniform numbers to disks, spheres and hemispheres; safe at 0 and 1.
+//! - [`cnj`]: curl-noise jittering (Bærentzen et al. 2023): closest-point and k-nearest queries
+//!   on a jittered triangular (2D) or BCC (3D) lattice, and Worley noise built on them, with no
+//!   point set stored.
+//! - [`stochastic`]: Perlin, simplex, fractal, sparse convolution, Gabor and smooth Voronoi
+//!   noise, each deterministic and as an unbiased one-sample estimator (Fajardo & Pharr).
 //!
 //! Nothing here panics or returns NaN for any finite input.
+//!
+//! # Example
+//!
+//! A game gets a mask's bytes from `noise_texture!` or from `build.rs` (a `static` over
+//! `include_bytes_aligned!`); here a 4×4 ordered-dither pattern stands in for them.
+//!
+//! ```
+//! use noise_runtime::{Mask2, ldg, stochastic};
+//!
+//! static BYTES: [u8; 16] = [0, 128, 32, 160, 192, 64, 224, 96, 48, 176, 16, 144, 240, 112, 208, 80];
+//! // The dims are part of the type; a length mismatch fails to compile in a `static`.
+//! static MASK: Mask2<u8, 4, 4> = Mask2::new(&BYTES);
+//!
+//! // Reads wrap toroidally, for any integer coordinates.
+//! assert_eq!(MASK.get(-1, 5), MASK.get(3, 1));
+//! // Thresholding at coverage p turns on a fraction p of the pixels.
+//! let on = (0..4).flat_map(|y| (0..4).map(move |x| (x, y)));
+//! assert_eq!(on.filter(|&(x, y)| MASK.threshold(x, y, 0.25)).count(), 4);
+//!
+//! // A stochastic noise value averages to the deterministic one: here over the ξ of a
+//! // 64×64 block of the R2 low-discrepancy grid.
+//! let p = [1.3, -2.7, 0.4];
+//! let mut mean = 0.0;
+//! for y in 0..64 {
+//!     for x in 0..64 {
+//!         mean += stochastic::perlin3_stochastic(p, 7, ldg::r2(x, y)) / 4096.0;
+//!     }
+//! }
+//! assert!((mean - stochastic::perlin3(p, 7)).abs() < 0.002);
+//! ```
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

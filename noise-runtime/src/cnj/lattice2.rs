@@ -247,7 +247,8 @@ impl Cnj2 {
     }
 
     /// The `K` nearest jittered points to `x` (world units, `f64` query), nearest first.
-    /// `K ≤ 4`. Exact: see [`for_ring_sites`].
+    /// `K ≤ 4`. Exact: every site in the hex rings around the nearest lattice site that a
+    /// jittered point can reach from (displacements below ~1.2 spacings) is compared.
     pub fn k_nearest_f64<const K: usize>(&self, x: [f64; 2]) -> [Neighbor2; K] {
         const { assert!(K >= 1 && K <= 4, "k_nearest supports K = 1..=4") };
         let (_, _, _, sp) = self.sane();

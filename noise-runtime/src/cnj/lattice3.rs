@@ -155,8 +155,9 @@ impl Cnj3 {
     }
 
     /// An upper bound on |displacement| in cube units for these parameters: the velocity is at
-    /// most [`MAX_SPEED`]`/ s` per unit time (the largest streamline speed measured over 27 648
-    /// sites was 4.5/s; the bound adds ~40 %, and the tests check it), times `t`.
+    /// most `6.5 / s` per unit time for the gradient-noise potential (the largest streamline
+    /// speed measured over 27 648 sites was 4.5/s; the bound adds ~40 %, and the tests check
+    /// it) and `15 / s` for the sum of sines, times `t`.
     pub fn max_displacement(&self) -> f64 {
         let (t, s, _, _) = self.sane();
         let speed = match self.potential {

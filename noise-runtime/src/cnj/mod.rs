@@ -18,6 +18,25 @@
 //! `f32` resolves the query to well below the point spacing: up to |x| ≈ 10⁵ spacings the
 //! rounding of the query (≤ 4e-3 spacings) cannot change which point is nearest except for ties
 //! closer than that. Beyond it use the `f64` forms. No input makes a query panic or return NaN.
+//!
+//! # Example
+//!
+//! ```
+//! use noise_runtime::cnj::Cnj2;
+//!
+//! let cnj = Cnj2::default(); // the paper's parameters, unit point spacing
+//! let q = [12.3, -4.5];
+//! // The three nearest jittered points, nearest first, found without generating a point set.
+//! let near = cnj.k_nearest::<3>(q);
+//! assert!(near[0].distance <= near[1].distance && near[1].distance <= near[2].distance);
+//! assert_eq!(cnj.closest(q), near[0]);
+//! // Every point is a pure function of its lattice site.
+//! assert_eq!(cnj.point(near[0].site), near[0].point);
+//! // Worley F1 and F2 from the same query.
+//! let cells = cnj.cells(q);
+//! assert_eq!(cells.f1(), near[0].distance);
+//! assert!(cells.f2() >= cells.f1());
+//! ```
 
 mod field;
 mod lattice2;

@@ -15,7 +15,7 @@ pub fn sanitize_xi(xi: f32) -> f32 {
 }
 
 /// Chooses the "upper" branch with probability `t` and remaps ξ to a fresh uniform number in
-/// `[0, 1)` for the next decision ([SWZ96], as in Algorithm 1). `t` is clamped to `[0, 1]`. With
+/// `[0, 1)` for the next decision (Shirley et al. 1996, as in Algorithm 1). `t` is clamped to `[0, 1]`. With
 /// `t = 0` the upper branch is never taken and with `t = 1` always (ξ < 1), so neither remap
 /// divides by zero.
 #[inline(always)]

@@ -10,6 +10,19 @@
 //! the time (Russian roulette, Algorithm 3). Inside a Monte Carlo renderer, where every pixel
 //! already averages many samples, the extra variance is small against the time saved.
 //!
+//! ```
+//! use noise_runtime::stochastic::{Fractal, fbm3, fbm3_stochastic};
+//!
+//! let f = Fractal::new(10, 2.0, 0.5); // ten octaves, lacunarity 2, gain ½
+//! let p = [0.7, 3.1, -5.2];
+//! let exact = fbm3(p, f, 1);
+//! // One octave per sample, chosen by ξ: 64 stratified ξ average close to the exact sum.
+//! let mean = (0..64).map(|i| fbm3_stochastic(p, f, 1, (i as f32 + 0.5) / 64.0)).sum::<f32>() / 64.0;
+//! assert!((mean - exact).abs() < 0.1, "{mean} vs {exact}");
+//! // ξ of exactly 0 and 1 are valid.
+//! assert!(fbm3_stochastic(p, f, 1, 0.0).is_finite() && fbm3_stochastic(p, f, 1, 1.0).is_finite());
+//! ```
+//!
 //! # When not to use them (Jensen's inequality)
 //!
 //! `E[g(X)] ≠ g(E[X])` for a non-linear `g`. A stochastic value is only unbiased where it enters
