@@ -102,8 +102,9 @@ pub fn fractal_stochastic(
     sign * total * noise([p[0] * freq, p[1] * freq, p[2] * freq], o, xi2)
 }
 
+/// The seed of octave `o`: each octave of a fractal noise is an independent noise.
 #[inline(always)]
-fn octave_seed(seed: u32, o: u32) -> u32 {
+pub(crate) fn octave_seed(seed: u32, o: u32) -> u32 {
     seed.wrapping_add(o.wrapping_mul(0x9e37_79b9))
 }
 

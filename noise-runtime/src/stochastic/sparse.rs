@@ -5,7 +5,7 @@
 //! (probability `(2i + 1)/n²`), giving eq. (8): `½ Σ_c ±k(|p − p_(i,c)|)`.
 
 use super::estimators::sanitize_xi;
-use super::fractal::{Fractal, fractal, fractal_stochastic};
+use super::fractal::{Fractal, fractal, fractal_stochastic, octave_seed};
 use super::hash::{PRIME, corner};
 use crate::math::{in_split_range, split, split_in_range};
 
@@ -218,11 +218,6 @@ static ISQRT: [u8; 4096] = {
     }
     t
 };
-
-#[inline(always)]
-fn octave_seed(seed: u32, o: u32) -> u32 {
-    seed.wrapping_add(o.wrapping_mul(0x9e37_79b9))
-}
 
 /// Fractal sum of [`sparse_conv3`] with `n` impulses per cell.
 #[inline]
