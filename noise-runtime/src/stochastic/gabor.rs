@@ -348,6 +348,25 @@ fn estimate(
 mod tests {
     use super::*;
 
+    /// Uniform numbers in `[0, 1)` from a xorshift generator.
+    fn uniforms(mut s: u64) -> impl FnMut() -> f32 {
+        move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / 16_777_216.0
+        }
+    }
+
+    /// A point in the cube `[-32, 32)³`.
+    fn point(next: &mut impl FnMut() -> f32) -> [f32; 3] {
+        [
+            next() * 64.0 - 32.0,
+            next() * 64.0 - 32.0,
+            next() * 64.0 - 32.0,
+        ]
+    }
+
     #[test]
     fn binary_search_matches_sequential_inversion() {
         for lambda in [0.1f32, 1.0, 8.0, 32.0] {
@@ -379,20 +398,10 @@ mod tests {
 
     #[test]
     fn compacted_estimator_is_the_plain_sum_bit_for_bit() {
-        let mut s = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / 16_777_216.0
-        };
+        let mut next = uniforms(0x2545_f491_4f6c_dd1d);
         let mut nonzero = 0;
         for k in 0..4000 {
-            let p = [
-                next() * 64.0 - 32.0,
-                next() * 64.0 - 32.0,
-                next() * 64.0 - 32.0,
-            ];
+            let p = point(&mut next);
             let xi = next();
             let g = Gabor {
                 impulses: [0.5, 8.0, 30.0][k % 3],
@@ -436,13 +445,7 @@ mod tests {
 
     #[test]
     fn prepared_noise_is_the_free_functions_bit_for_bit() {
-        let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / 16_777_216.0
-        };
+        let mut next = uniforms(0x9e37_79b9_7f4a_7c15);
         for g in [
             Gabor::default(),
             Gabor {
@@ -457,11 +460,7 @@ mod tests {
             let noise = GaborNoise::new(g);
             let (mut full, mut cells) = (0, 0);
             for _ in 0..3000 {
-                let p = [
-                    next() * 64.0 - 32.0,
-                    next() * 64.0 - 32.0,
-                    next() * 64.0 - 32.0,
-                ];
+                let p = point(&mut next);
                 let xi = next();
                 assert_eq!(noise.sample(p, 5).to_bits(), gabor3(p, g, 5).to_bits());
                 assert_eq!(
