@@ -141,11 +141,12 @@ fn count(h: u32, cdf: &PoissonCdf) -> u32 {
 const GUIDE_BITS: u32 = 12;
 
 /// A guide table (Chen & Asau's indexed search) over [`PoissonCdf`]: for each of 4096 bins of
-/// `u`, the count at the bin's start, or [`PoissonGuide::FULL`] when the bin holds more than two
-/// CDF entries (only in the far tails: for λ ≤ 8 the last bin alone, `u > 1 − 2^-12`; for λ = 32 two). A count is
-/// then one table read and two compares instead of six dependent halvings, and the same count
-/// for every `u`: within a bin it is at least the start's `lo` and at most the end's, at most
-/// `lo + 2`, and each entry from `lo` on that lies below `u` adds one.
+/// `u`, the count at the bin's start, or [`PoissonGuide::FULL`] when the bin holds more than
+/// two CDF entries (only in the far tails: for λ ≤ 8 the last bin alone, `u > 1 − 2^-12`; for
+/// λ = 32 two bins). A count is then one table read and two compares instead of six dependent
+/// halvings, and the same count for every `u`: within a bin it is at least the start's `lo`
+/// and at most the end's, at most `lo + 2`, and each entry from `lo` on that lies below `u`
+/// adds one.
 #[derive(Clone, Debug)]
 struct PoissonGuide {
     cdf: PoissonCdf,
@@ -186,7 +187,12 @@ impl PoissonGuide {
     /// branch, so that a pass over all cells needs just one test at its end.
     #[inline(always)]
     fn count_or_full(&self, h: u32) -> (u32, bool) {
-        let bits = count_bits(h);
+        self.count_of_bits(count_bits(h))
+    }
+
+    /// [`PoissonGuide::count_or_full`] for the uniform `U / 2^24` itself.
+    #[inline(always)]
+    fn count_of_bits(&self, bits: u32) -> (u32, bool) {
         let u = unit(bits);
         let lo = self.lo[(bits >> (24 - GUIDE_BITS)) as usize];
         let k = (lo & 63) as usize;
@@ -369,7 +375,8 @@ mod tests {
 
     #[test]
     fn binary_search_matches_sequential_inversion() {
-        for lambda in [0.1f32, 1.0, 8.0, 32.0] {
+        // λ = 12 has a bin holding two CDF entries, which only the second compare counts.
+        for lambda in [0.1f32, 1.0, 8.0, 12.0, 32.0] {
             let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
             for i in 0..=4096u32 {
                 let u = i as f32 / 4096.0;
@@ -420,23 +427,18 @@ mod tests {
 
     #[test]
     fn guide_table_counts_exactly_as_the_binary_search_for_every_u() {
-        for lambda in [0.1f32, 1.0, 8.0, 32.0] {
+        // λ = 12 has a bin holding two CDF entries, which only the second compare counts.
+        for lambda in [0.1f32, 1.0, 8.0, 12.0, 32.0] {
             let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
             let guide = PoissonGuide::new(cdf.clone());
             let mut full = 0;
-            // Every 24-bit uniform: `count_bits` reaches each exactly once as `h` runs over
-            // the odd multiples of the inverse of its multiplier, but a direct sweep is simpler.
+            // Every 24-bit uniform: `count_bits` (an odd multiplier, so a bijection of u32,
+            // then the top 24 bits) reaches each from 256 hashes; a direct sweep is simpler.
             for bits in 0..1u32 << 24 {
-                let exact = cdf.sample(unit(bits));
-                let lo = guide.lo[(bits >> (24 - GUIDE_BITS)) as usize];
-                if lo == PoissonGuide::FULL {
-                    full += 1;
-                    continue;
+                match guide.count_of_bits(bits) {
+                    (_, true) => full += 1,
+                    (n, false) => assert_eq!(n, cdf.sample(unit(bits)), "λ {lambda}, U {bits:#x}"),
                 }
-                let k = lo as usize;
-                let u = unit(bits);
-                let n = k as u32 + (u > guide.cdf.0[k]) as u32 + (u > guide.cdf.0[k + 1]) as u32;
-                assert_eq!(n, exact, "λ {lambda}, U {bits:#x}");
             }
             // The binary search takes over only in the far tails.
             assert!(full <= 4 << (24 - GUIDE_BITS), "λ {lambda}: {full}");
