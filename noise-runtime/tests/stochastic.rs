@@ -22,6 +22,18 @@ impl Rng {
 
 type Pair = (&'static str, fn([f32; 3]) -> f32, fn([f32; 3], f32) -> f32);
 
+/// The octaves of the fractal sparse convolution under test.
+const FBM_SPARSE: Fractal = Fractal::new(4, 2.0, 0.5);
+
+/// The sparse convolution sums whose estimators are tested, each against two estimators.
+fn sparse(p: [f32; 3]) -> f32 {
+    sparse_conv3(p, 10, 3)
+}
+
+fn fbm_sparse(p: [f32; 3]) -> f32 {
+    fbm_sparse_conv3(p, FBM_SPARSE, 6, 3)
+}
+
 fn pairs() -> Vec<Pair> {
     vec![
         (
@@ -49,26 +61,19 @@ fn pairs() -> Vec<Pair> {
             |p| fbm3(p, Fractal::new(6, 2.0, 0.5), 3),
             |p, x| fbm3_stochastic(p, Fractal::new(6, 2.0, 0.5), 3, x),
         ),
-        (
-            "sparse_conv3",
-            |p| sparse_conv3(p, 10, 3),
-            |p, x| sparse_conv3_stochastic(p, 10, 3, x),
-        ),
-        (
-            "fbm_sparse_conv3",
-            |p| fbm_sparse_conv3(p, Fractal::new(4, 2.0, 0.5), 6, 3),
-            |p, x| fbm_sparse_conv3_stochastic(p, Fractal::new(4, 2.0, 0.5), 6, 3, x),
-        ),
-        (
-            "sparse_conv3 one-term",
-            |p| sparse_conv3(p, 10, 3),
-            |p, x| sparse_conv3_stochastic1(p, 10, 3, x),
-        ),
-        (
-            "fbm_sparse_conv3 one-term",
-            |p| fbm_sparse_conv3(p, Fractal::new(4, 2.0, 0.5), 6, 3),
-            |p, x| fbm_sparse_conv3_stochastic1(p, Fractal::new(4, 2.0, 0.5), 6, 3, x),
-        ),
+        ("sparse_conv3", sparse, |p, x| {
+            sparse_conv3_stochastic(p, 10, 3, x)
+        }),
+        ("fbm_sparse_conv3", fbm_sparse, |p, x| {
+            fbm_sparse_conv3_stochastic(p, FBM_SPARSE, 6, 3, x)
+        }),
+        // The one-term estimators of the same two sums.
+        ("sparse_conv3 one-term", sparse, |p, x| {
+            sparse_conv3_stochastic1(p, 10, 3, x)
+        }),
+        ("fbm_sparse_conv3 one-term", fbm_sparse, |p, x| {
+            fbm_sparse_conv3_stochastic1(p, FBM_SPARSE, 6, 3, x)
+        }),
         (
             "gabor3",
             |p| gabor3(p, Gabor::default(), 3),
