@@ -253,11 +253,17 @@ pub fn split_in_range(x: f32) -> (i32, f32) {
     let y = x + MAGIC;
     let r = y - MAGIC;
     let f = x - r;
-    // Strictly negative, not −0: an integer test of the bits, as in `split`.
-    let down = (f.to_bits() > 0x8000_0000) as u32;
+    // The sign of `f`, with −0 counted as +0 (adding +0 turns −0 into +0 and leaves every other
+    // value alone): strictly negative offsets step down a cell.
+    let sign = (f + 0.0).to_bits() & 0x8000_0000;
+    // `½ − (±½)` is 1 for a negative offset, else 0: the step as a float by bit operations and
+    // a subtraction. A select between 1.0 and 0.0 on the sign (or a mask of it) is what LLVM
+    // would make of the obvious code, and on x86 it lowers such a select to a branch,
+    // mispredicted on half of all random coordinates.
+    let step = 0.5 - f32::from_bits(sign | 0x3f00_0000);
     (
-        (y.to_bits().wrapping_sub(MAGIC.to_bits()) as i32) - down as i32,
-        f + f32::from_bits(down.wrapping_neg() & 0x3f80_0000),
+        (y.to_bits().wrapping_sub(MAGIC.to_bits()) as i32) - (sign >> 31) as i32,
+        f + step,
     )
 }
 

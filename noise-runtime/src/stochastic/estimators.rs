@@ -31,55 +31,84 @@ pub fn pick(xi: &mut f32, t: f32) -> bool {
 }
 
 /// The corner of a `D`-linear interpolation that Algorithm 1 selects with one ξ: for each axis
-/// (first axis first), 1 if the upper side was chosen (probability `t[a]`), else 0. The same
-/// selection as [`pick`] applied axis after axis, computed without a division, a branch or a
-/// chain of dependent decisions, for the lattice estimators.
+/// (first axis first), the upper side with probability `t[a]`. The same selection as [`pick`]
+/// applied axis after axis, computed without a division or a branch, for the lattice
+/// estimators.
 ///
 /// Remapping ξ after each decision (eq. 4) and keeping ξ fixed while narrowing the interval it
 /// must fall in are the same selection: a decision with weight `t` splits the current interval
-/// `[s, s + l)` at `s + l·t` into the upper side (first) and the lower one. All `2^D − 1` split
-/// points depend only on the weights, and they are exactly the boundaries between the `2^D`
-/// leaf intervals, which lie in corner order. So the corner's rank is the number of split
-/// points at or below ξ: one compare each, all independent, summed — where the nested
-/// decisions would be a chain of `D` dependent ones. A weight that rounds to 0 or 1 (the fade
-/// of `t ≥ 0.9952` in f32) just gives a leaf of width 0, which ξ never falls in, and nothing is
-/// ever divided. Rounding moves a corner's probability by a few ulps. `D` is at most 4.
+/// `[s, s + l)` at `s + l·t` into the upper side (first) and the lower one. The interval is
+/// kept as ξ's residue `r = ξ − s` and its length `l`, in fixed point with 23 fractional bits:
+/// the upper side is taken when `r < c = ⌊l·t⌋`, then `l ← c`; otherwise `r ← r − c` and
+/// `l ← l − c`. Each axis is an integer multiply, a shift, a compare and a few masked moves,
+/// where the remap of eq. 4 divides by `t` or `1 − t`.
+///
+/// In integers the invariant `0 ≤ r < l` holds exactly, so a side of weight 0 — a fade weight
+/// that rounds to exactly 0 or 1 in f32, as it does for `t ≥ 0.9952` — has length 0 and is
+/// never taken, and there is no `0/0` to guard. Each weight is rounded to a multiple of 2^-23
+/// and each cut floors, so a corner's probability is off by at most `D · 2^-23` (f32 rounding
+/// in the remap is of the same order). `D` is at most 4.
 #[inline(always)]
-pub(crate) fn nested_corner<const D: usize>(xi: f32, t: [f32; D]) -> Corner {
+pub(crate) fn nested_corner<const D: usize>(xi: f32, t: [f32; D]) -> Corner<D> {
     const { assert!(D >= 1 && D <= 4) };
-    let xi = sanitize_xi(xi).to_bits() as i32;
-    // The intervals of the current level, as (start, length); a level has 2^a of them.
-    let mut start = [0.0f32; 8];
-    let mut len = [1.0f32; 8];
-    let mut rank = 0u32;
-    for (a, &ta) in t.iter().enumerate() {
-        let n = 1usize << a;
-        for j in (0..n).rev() {
-            let cut = len[j] * ta;
-            let split = start[j] + cut;
-            // Split points and ξ are non-negative floats below 2, so their bit patterns order
-            // like their values: `split ≤ ξ` is the sign of the difference, as 0 or 1. An
-            // integer, not a compare: LLVM lowers selects on a compare to branches on x86.
-            rank += !(xi.wrapping_sub(split.to_bits() as i32) as u32) >> 31;
-            if a + 1 < D {
-                start[2 * j + 1] = split;
-                len[2 * j + 1] = len[j] - cut;
-                start[2 * j] = start[j];
-                len[2 * j] = cut;
-            }
-        }
-    }
-    // Leaves are ranked upper side first, first axis most significant: the complement of the
-    // rank has bit `D − 1 − a` set when axis `a` took its upper side. Shifted so that axis `a`
-    // is bit `3 − a` whatever `D`.
-    Corner((!rank & ((1 << D) - 1)) << (4 - D))
+    let mut n = Narrowing::new(xi);
+    Corner(t.map(|ta| n.upper(ta)))
 }
 
-/// The corner [`nested_corner`] chose: bit `3 − a` is set when axis `a` took its upper side.
+/// The interval [`nested_corner`] narrows, one decision at a time: ξ's residue `r` in it and
+/// its length `l`, in fixed point. For estimators that interleave their own work with the
+/// decisions (the 3D Perlin estimator hashes as it decides).
 #[derive(Clone, Copy)]
-pub(crate) struct Corner(u32);
+pub(crate) struct Narrowing {
+    r: u64,
+    l: u64,
+}
 
-/// `UNIT[k][a]` is bit `3 − a` of `k` as a float. Read by index, so that the side of a random
+impl Narrowing {
+    /// The whole unit interval, with ξ sanitised ([`sanitize_xi`]) and below the fixed-point 1.
+    #[inline(always)]
+    pub(crate) fn new(xi: f32) -> Self {
+        const ONE: u64 = 1 << FIXED_BITS;
+        Narrowing {
+            r: fixed(sanitize_xi(xi)).min(ONE - 1),
+            l: ONE,
+        }
+    }
+
+    /// One decision with weight `t ∈ [0, 1]`: all ones when the upper side was taken.
+    #[inline(always)]
+    pub(crate) fn upper(&mut self, t: f32) -> u32 {
+        // Wrapping: for weights in [0, 1] nothing comes near 2^64; for others it must not panic.
+        let cut = self.l.wrapping_mul(fixed(t)) >> FIXED_BITS;
+        // All ones when `r < cut` (both below 2^24, so the difference's sign says it). The sign
+        // of a subtraction rather than a compare: LLVM turns selects on a compare into branches
+        // on x86, mispredicted on half of all random ξ.
+        let up = (self.r.wrapping_sub(cut) as i64 >> 63) as u64;
+        self.r -= cut & !up;
+        let rest = self.l.wrapping_sub(cut);
+        self.l = rest ^ ((cut ^ rest) & up);
+        up as u32
+    }
+}
+
+/// Fractional bits of [`nested_corner`]'s fixed point.
+const FIXED_BITS: u32 = 23;
+
+/// `t · 2^23` rounded to nearest, for `t ∈ [0, 1]`: the mantissa of `1 + t`, read from its
+/// bits, where the ulp is 2^-23 — one add, no saturating conversion. Not clamped (an integer
+/// clamp here became branches on x86): the lattice weights are fades of offsets in `[0, 1]`,
+/// which lie in `[0, 1]` up to an ulp. A weight a little above 1 gives a cut a little above
+/// `l`, so the upper side is always taken, as for 1; nothing wraps into a panic.
+#[inline(always)]
+fn fixed(t: f32) -> u64 {
+    (t + 1.0).to_bits().wrapping_sub(0x3f80_0000) as u64
+}
+
+/// The corner [`nested_corner`] chose: per axis, all ones when it took its upper side, else 0.
+#[derive(Clone, Copy)]
+pub(crate) struct Corner<const D: usize>([u32; D]);
+
+/// `UNIT[k][a]` is bit `a` of `k` as a float. Read by index, so that the side of a random
 /// decision never becomes a float select, which LLVM lowers to a branch on x86 (mispredicted
 /// on half of all random ξ).
 static UNIT: [[f32; 4]; 16] = {
@@ -88,7 +117,7 @@ static UNIT: [[f32; 4]; 16] = {
     while k < 16 {
         let mut a = 0;
         while a < 4 {
-            t[k][a] = ((k >> (3 - a)) & 1) as f32;
+            t[k][a] = ((k >> a) & 1) as f32;
             a += 1;
         }
         k += 1;
@@ -96,24 +125,29 @@ static UNIT: [[f32; 4]; 16] = {
     t
 };
 
-impl Corner {
+impl<const D: usize> Corner<D> {
     /// 1 if axis `a` took its upper side, else 0.
     #[inline(always)]
     pub(crate) fn int(self, a: usize) -> i32 {
-        ((self.0 >> (3 - a)) & 1) as i32
+        (self.0[a] & 1) as i32
     }
 
-    /// The corner as a number in `0..16`: bit `3 − a` set when axis `a` took its upper side.
+    /// The corner's offsets per axis as floats: `[1.0 or 0.0; 4]` (lanes past `D` are 0).
     #[inline(always)]
-    pub(crate) fn index(self) -> usize {
-        self.0 as usize & 15
+    pub(crate) fn floats(self) -> [f32; 4] {
+        let mut k = 0;
+        for (a, m) in self.0.iter().enumerate() {
+            k |= (m & 1) << a;
+        }
+        unit_corner(k)
     }
+}
 
-    /// 1.0 if axis `a` took its upper side, else 0.0, without a branch.
-    #[inline(always)]
-    pub(crate) fn float(self, a: usize) -> f32 {
-        UNIT[self.0 as usize & 15][a]
-    }
+/// Corner `k` (bit `a` set when axis `a` took its upper side) as per-axis offsets
+/// `[1.0 or 0.0; 4]`; `k < 16`.
+#[inline(always)]
+pub(crate) fn unit_corner(k: u32) -> [f32; 4] {
+    UNIT[k as usize & 15]
 }
 
 /// One-sample estimator of `lerp(f0, f1, t)` (eq. 2): evaluates only the chosen endpoint.
@@ -157,7 +191,12 @@ mod tests {
             let mut idx = 0;
             for a in 0..D {
                 idx = idx << 1 | c.int(a) as usize;
-                assert_eq!(c.float(a), c.int(a) as f32);
+                assert_eq!(c.floats()[a], c.int(a) as f32);
+                assert_eq!(
+                    c.0[a],
+                    c.int(a).wrapping_neg() as u32,
+                    "a mask, all ones or 0"
+                );
             }
             h[idx] += 1;
         }
@@ -197,6 +236,52 @@ mod tests {
                 let c = nested_corner(xi, t);
                 for a in 0..2 {
                     assert_eq!(c.int(a), t[a] as i32, "ξ {xi}, t {t:?}, axis {a}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn narrowing_decides_weights_at_and_past_the_ends_alike_at_every_depth() {
+        // Four decisions deep, after any mix of sides: a weight of 0 (or −0) never takes the
+        // upper side and a weight of 1 — or an ulp or a few past it, as a fade's rounding could
+        // give — always does, for ξ at both ends of [0, 1] and beyond. Mixed with ordinary
+        // weights, so that the interval has been narrowed unevenly before the extreme one.
+        let above = [
+            1.0f32,
+            f32::from_bits(0x3f80_0001),
+            f32::from_bits(0x3f80_0004),
+        ];
+        let xis = [
+            0.0f32,
+            1e-30,
+            1e-7,
+            0.3,
+            0.5,
+            0.999_999,
+            ONE_BELOW,
+            1.0,
+            2.0,
+            f32::NAN,
+        ];
+        for &xi in &xis {
+            for mix in 0..81u32 {
+                // Each of the four weights: 0, 0.5, or something ≥ 1 (cycling the three kinds).
+                let t: [f32; 4] = core::array::from_fn(|a| match (mix / 3u32.pow(a as u32)) % 3 {
+                    0 => [0.0, -0.0][a % 2],
+                    1 => 0.5,
+                    _ => above[a % 3],
+                });
+                let mut n = Narrowing::new(xi);
+                for (a, &ta) in t.iter().enumerate() {
+                    let up = n.upper(ta);
+                    assert!(up == 0 || up == u32::MAX, "a mask: {up:#x}");
+                    if ta <= 0.0 {
+                        assert_eq!(up, 0, "ξ {xi}, t {t:?}, axis {a}");
+                    } else if ta >= 1.0 {
+                        assert_eq!(up, u32::MAX, "ξ {xi}, t {t:?}, axis {a}");
+                    }
+                    assert!(n.r < n.l, "ξ {xi}, t {t:?}, axis {a}: r {} l {}", n.r, n.l);
                 }
             }
         }

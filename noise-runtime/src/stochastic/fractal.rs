@@ -70,36 +70,86 @@ pub fn fractal(p: [f32; 3], f: Fractal, mut noise: impl FnMut([f32; 3], u32) -> 
 /// One-sample estimator of [`fractal`] (Algorithm 2): octave `o` is chosen with probability
 /// `|gain^o| / Σ|gain^i|`, and `noise(p · lacunarity^o, o, ξ')` is scaled by the sum; `ξ'` is ξ
 /// remapped within the chosen octave's interval, so the noise can be stochastic too.
-#[inline]
+#[inline(always)]
 pub fn fractal_stochastic(
     p: [f32; 3],
     f: Fractal,
     xi: f32,
     noise: impl FnOnce([f32; 3], u32, f32) -> f32,
 ) -> f32 {
-    let (n, lac, gain) = f.sane();
-    let g = gain.abs();
-    let mut total = 0.0f32;
-    let mut a = 1.0f32;
-    for _ in 0..n {
-        total += a;
-        a *= g;
+    let k = OctavePick::new(f, xi);
+    k.scale(noise(k.point(p), k.octave, k.xi))
+}
+
+/// The octave Algorithm 2 picks for one ξ, with what the estimator needs of it.
+#[derive(Clone, Copy)]
+pub(crate) struct OctavePick {
+    /// The chosen octave.
+    pub(crate) octave: u32,
+    /// Its frequency `lacunarity^octave`, as [`fractal`] computes it.
+    freq: f32,
+    /// ξ remapped within the octave's interval, in `[0, 1)`, for a stochastic octave noise.
+    pub(crate) xi: f32,
+    /// `Σ|gain^i|`, the estimator's weight.
+    total: f32,
+    /// The sign bit of `gain^octave` (negative gains alternate).
+    flip: u32,
+}
+
+impl OctavePick {
+    #[inline(always)]
+    pub(crate) fn new(f: Fractal, xi: f32) -> Self {
+        let (n, lac, gain) = f.sane();
+        let g = gain.abs();
+        // Each octave's interval `[start, start + amp)` of the CDF and its frequency,
+        // accumulated in the order the deterministic sum multiplies them, so the chosen
+        // octave's frequency is bit for bit the one `fractal` uses. Independent of ξ: with a
+        // constant `Fractal` the compiler folds the table.
+        let mut start = [0.0f32; 32];
+        let mut amp = [0.0f32; 32];
+        let mut freq = [0.0f32; 32];
+        let (mut s, mut a, mut fr) = (0.0f32, 1.0f32, 1.0f32);
+        for o in 0..n as usize {
+            (start[o], amp[o], freq[o]) = (s, a, fr);
+            s += a;
+            a *= g;
+            fr *= lac;
+        }
+        let target = sanitize_xi(xi) * s;
+        // The octave is the number of later starts at or below the target: a fixed number of
+        // compares, summed. The linear search of Algorithm 2 stops after a number of steps set
+        // by ξ, which the branch predictor cannot know: about one misprediction per call,
+        // which cost more than the rest of the estimator.
+        let mut o = 0usize;
+        for &st in &start[1..n as usize] {
+            o += (target >= st) as usize;
+        }
+        let xi = if amp[o] > 0.0 {
+            ((target - start[o]) / amp[o]).clamp(0.0, ONE_BELOW)
+        } else {
+            0.0
+        };
+        OctavePick {
+            octave: o as u32,
+            freq: freq[o],
+            xi,
+            total: s,
+            // An integer, not a select on the octave's parity (which would be a branch).
+            flip: ((gain < 0.0) as u32 & o as u32) << 31,
+        }
     }
-    let mut target = sanitize_xi(xi) * total;
-    let (mut amp, mut freq, mut o) = (1.0f32, 1.0f32, 0u32);
-    while o + 1 < n && target >= amp {
-        target -= amp;
-        amp *= g;
-        freq *= lac;
-        o += 1;
+
+    /// The point scaled to the chosen octave's frequency.
+    #[inline(always)]
+    pub(crate) fn point(self, p: [f32; 3]) -> [f32; 3] {
+        p.map(|c| c * self.freq)
     }
-    let xi2 = if amp > 0.0 {
-        (target / amp).clamp(0.0, ONE_BELOW)
-    } else {
-        0.0
-    };
-    let sign = if gain < 0.0 && o % 2 == 1 { -1.0 } else { 1.0 };
-    sign * total * noise([p[0] * freq, p[1] * freq, p[2] * freq], o, xi2)
+
+    /// The estimate from the chosen octave's noise value `v`: `±total · v`.
+    #[inline(always)]
+    pub(crate) fn scale(self, v: f32) -> f32 {
+        f32::from_bits((self.total * v).to_bits() ^ self.flip)
+    }
 }
 
 /// The seed of octave `o`: each octave of a fractal noise is an independent noise.
@@ -116,11 +166,14 @@ pub fn fbm3(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
 
 /// One-sample estimator of [`fbm3`]: one octave, and in it one Perlin gradient — one hash and
 /// one dot product whatever the octave count.
-#[inline]
+#[inline(always)]
 pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
-    fractal_stochastic(p, f, xi, |q, o, x| {
-        perlin3_stochastic(q, octave_seed(seed, o), x)
-    })
+    let k = OctavePick::new(f, xi);
+    k.scale(perlin3_stochastic(
+        k.point(p),
+        octave_seed(seed, k.octave),
+        k.xi,
+    ))
 }
 
 #[cfg(test)]

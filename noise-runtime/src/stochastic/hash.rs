@@ -45,8 +45,11 @@ pub(crate) const PRIME: [u32; 4] = [0x8da6_b343, 0xd816_3841, 0xcb1a_b31f, 0x165
 /// The cheap corner hash: `(seed ^ xp ^ yp ^ zp) · M`; use its **top** bits.
 #[inline(always)]
 pub(crate) fn corner(seed: u32, xp: u32, yp: u32, zp: u32) -> u32 {
-    (seed ^ xp ^ yp ^ zp).wrapping_mul(0x27d4_eb2d)
+    (seed ^ xp ^ yp ^ zp).wrapping_mul(CORNER_MUL)
 }
+
+/// The odd constant that finishes a [`corner`] hash.
+pub(crate) const CORNER_MUL: u32 = 0x27d4_eb2d;
 
 /// A point in the unit cell from a corner hash: one of [`POINTS`], chosen by the hash's top 10
 /// bits. A table read instead of computing the point from the hash (a multiply–xorshift round

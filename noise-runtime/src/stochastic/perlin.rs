@@ -4,8 +4,8 @@
 //! corner with probability equal to its interpolation weight, and only that corner's gradient
 //! is evaluated.
 
-use super::estimators::nested_corner;
-use super::hash::{PRIME, corner, hash4};
+use super::estimators::{Narrowing, nested_corner, unit_corner};
+use super::hash::{CORNER_MUL, PRIME, corner, hash4};
 use crate::math::{dfade, fade, split};
 
 #[inline(always)]
@@ -140,7 +140,8 @@ pub fn perlin2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
         (iy.wrapping_add(c.int(1)) as u32).wrapping_mul(PRIME[1]),
         0,
     ));
-    g[0] * (x - c.float(0)) + g[1] * (y - c.float(1))
+    let o = c.floats();
+    g[0] * (x - o[0]) + g[1] * (y - o[1])
 }
 
 /// 3D Perlin noise (improved noise), about `[-1, 1]`.
@@ -252,23 +253,24 @@ fn perlin3_stochastic_with(p: [f32; 3], seed: u32, xi: f32, sp: impl Fn(f32) -> 
     let (ix, x) = sp(p[0]);
     let (iy, y) = sp(p[1]);
     let (iz, z) = sp(p[2]);
-    // The gradient index of all eight corners while the corner is being chosen (they depend
-    // only on the cell), packed four bits each into one register: once it is, a shift picks
-    // the chosen one. Hashing after the choice put two multiplies on the chain that the
-    // estimator waits on, and LLVM vectorised them into emulated 32-bit SIMD multiplies,
-    // slower still. Corner `k` is numbered as `Corner::index() / 2`: bit `2 − a` set when axis
-    // `a` takes its upper side.
-    let ([xp0, yp0, zp0], [xp1, yp1, zp1]) = cell_products(ix, iy, iz);
-    let mut packed = 0u32;
-    for k in 0..8 {
-        let xp = if k & 4 != 0 { xp1 } else { xp0 };
-        let yp = if k & 2 != 0 { yp1 } else { yp0 };
-        let zp = if k & 1 != 0 { zp1 } else { zp0 };
-        packed |= (corner(seed, xp, yp, zp) >> 28) << (4 * k);
+    let cell = [ix, iy, iz];
+    let t = [fade(x), fade(y), fade(z)];
+    // Only the chosen corner is hashed, axis by axis as it is chosen: the lower side's product
+    // plus, when the upper side was taken, the axis prime under the decision's mask — an add,
+    // no multiply and no select after the decision.
+    let mut n = Narrowing::new(xi);
+    let mut h = seed;
+    let mut k = 0;
+    for a in 0..3 {
+        let up = n.upper(t[a]);
+        h ^= (cell[a] as u32)
+            .wrapping_mul(PRIME[a])
+            .wrapping_add(up & PRIME[a]);
+        k |= (up & 1) << a;
     }
-    let c = nested_corner(xi, [fade(x), fade(y), fade(z)]);
-    let g = GRAD3[((packed >> (2 * c.index())) & 15) as usize];
-    g[0] * (x - c.float(0)) + g[1] * (y - c.float(1)) + g[2] * (z - c.float(2))
+    let g = g3(h.wrapping_mul(CORNER_MUL));
+    let o = unit_corner(k);
+    g[0] * (x - o[0]) + g[1] * (y - o[1]) + g[2] * (z - o[2])
 }
 
 /// The cell and offset of a 4D point, per axis ([`split`]).
@@ -346,5 +348,6 @@ pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     let (cell, f) = split4(p);
     let c = nested_corner(xi, f.map(fade));
     let g = grad4(cell, core::array::from_fn(|a| c.int(a)), seed);
-    (0..4).map(|a| g[a] * (f[a] - c.float(a))).sum()
+    let o = c.floats();
+    (0..4).map(|a| g[a] * (f[a] - o[a])).sum()
 }
