@@ -271,7 +271,14 @@ pub fn split_in_range(x: f32) -> (i32, f32) {
 /// applies; larger coordinates take [`split`]).
 #[inline(always)]
 pub fn in_split_range<const N: usize>(p: [f32; N]) -> bool {
-    p.iter().all(|v| v.abs() < 4_194_304.0)
+    // `|v| < 2^22` is `abs_bits < 0x4a80_0000` (NaN and infinity are above), which is the sign
+    // bit of `abs_bits + (2^31 − 0x4a80_0000)` being clear: one add per coordinate, their OR,
+    // and a single test, where compares chained by `&&` were a branch each.
+    let mut any = 0u32;
+    for v in p {
+        any |= (v.to_bits() & 0x7fff_ffff) + (0x8000_0000 - 0x4a80_0000);
+    }
+    any >> 31 == 0
 }
 
 /// Perlin's quintic fade `6t⁵ − 15t⁴ + 10t³` (Perlin 2002): C² interpolation weights.
@@ -392,9 +399,27 @@ mod tests {
         ] {
             assert_eq!(split(x), (cell, 0.0), "x {x:e}");
         }
-        // Outside the range the callers take `split`.
-        assert!(!in_split_range([4_194_304.0f32]));
-        assert!(!in_split_range([f32::NAN]));
-        assert!(!in_split_range([0.5f32, f32::INFINITY]));
+        // Outside the range the callers take `split`: the bound itself, anything larger,
+        // non-finite values of either sign, in any position of the point.
+        for out in [
+            4_194_304.0f32,
+            -4_194_304.0,
+            4_194_304.5,
+            1e30,
+            f32::MAX,
+            f32::MIN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+        ] {
+            assert!(!in_split_range([out]), "{out}");
+            assert!(!in_split_range([0.5, out, -2.0]), "{out}");
+            assert!(!in_split_range([1e-30, 3.0, out]), "{out}");
+        }
+        // Inside: up to the largest float below 2^22, both signs, zeros and subnormals.
+        let below = f32::from_bits(4_194_304.0f32.to_bits() - 1);
+        assert!(in_split_range([below, -below, 0.0]));
+        assert!(in_split_range([-0.0f32, 1e-45, -1e-45]));
     }
 }
