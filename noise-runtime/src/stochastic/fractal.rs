@@ -100,6 +100,16 @@ impl OctavePick {
     #[inline(always)]
     pub(crate) fn new(f: Fractal, xi: f32) -> Self {
         let (n, lac, gain) = f.sane();
+        if lac == 2.0 && (gain == 0.5 || gain == -0.5) {
+            Self::halving(n, gain, xi)
+        } else {
+            Self::table(n, lac, gain, xi)
+        }
+    }
+
+    /// [`OctavePick::new`] for any parameters, by a table of the CDF.
+    #[inline(always)]
+    fn table(n: u32, lac: f32, gain: f32, xi: f32) -> Self {
         let g = gain.abs();
         // Each octave's interval `[start, start + amp)` of the CDF and its frequency,
         // accumulated in the order the deterministic sum multiplies them, so the chosen
@@ -115,7 +125,7 @@ impl OctavePick {
             a *= g;
             fr *= lac;
         }
-        let target = sanitize_xi(xi) * s;
+        let target = Self::target(xi, s);
         // The octave is the number of later starts at or below the target: a fixed number of
         // compares, summed. The linear search of Algorithm 2 stops after a number of steps set
         // by ξ, which the branch predictor cannot know: about one misprediction per call,
@@ -137,6 +147,44 @@ impl OctavePick {
             // An integer, not a select on the octave's parity (which would be a branch).
             flip: ((gain < 0.0) as u32 & o as u32) << 31,
         }
+    }
+
+    /// [`OctavePick::new`] for lacunarity 2 and gain ±½ (the paper's settings and the most
+    /// common fBm): the same octave, frequency and remapped ξ, bit for bit, from exponent bits
+    /// instead of a table of the CDF. The octave starts are `S_o = 2 − 2^(1−o)`, exact in f32
+    /// up to `o = 24` (after that the sum rounds to 2 and later octaves are never chosen, in
+    /// either form), so `S_o ≤ target < S_(o+1)` is `2^(−o) < w ≤ 2^(1−o)` for
+    /// `w = 2 − target`, and `o` is minus the exponent of the double just below `w`. The
+    /// frequency `2^o` and `(target − S_o)·2^o ∈ [0, 1)` are exact.
+    #[inline(always)]
+    fn halving(n: u32, gain: f32, xi: f32) -> Self {
+        let mut total = 0.0f32;
+        let mut a = 1.0f32;
+        for _ in 0..n {
+            total += a;
+            a *= 0.5;
+        }
+        let target = Self::target(xi, total);
+        // In f64, where `2 − target` is exact for every f32 target (in f32 it rounds for
+        // targets just below 1, to an octave too far).
+        let w = 2.0 - target as f64;
+        let o = (1023 - ((w.to_bits() - 1) >> 52)) as u32;
+        let pow2 = |e: u32| f32::from_bits((127 + e) << 23);
+        let start = 2.0 - 2.0 * f32::from_bits((127 - o) << 23);
+        OctavePick {
+            octave: o,
+            freq: pow2(o),
+            xi: (target - start) * pow2(o),
+            total,
+            flip: ((gain < 0.0) as u32 & o) << 31,
+        }
+    }
+
+    /// `ξ · total`, kept below `total` (the product rounds up to it for ξ just below 1), so
+    /// that it lies in some octave's interval `[start, start + weight)`.
+    #[inline(always)]
+    fn target(xi: f32, total: f32) -> f32 {
+        (sanitize_xi(xi) * total).min(f32::from_bits(total.to_bits() - 1))
     }
 
     /// The point scaled to the chosen octave's frequency.
@@ -179,6 +227,45 @@ pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The exponent-bit form for lacunarity 2 and gain ±½ picks what the table form picks:
+    /// the same octave, frequency, remapped ξ, weight and sign, bit for bit, for every octave
+    /// count, on a fine ξ grid, at each octave boundary and an ulp either side, and at the
+    /// hard values of ξ.
+    #[test]
+    fn halving_form_is_the_table_form_bit_for_bit() {
+        let fields = |k: OctavePick| {
+            (
+                k.octave,
+                k.freq.to_bits(),
+                k.xi.to_bits(),
+                k.total.to_bits(),
+                k.flip,
+            )
+        };
+        for n in 1..=32u32 {
+            for gain in [0.5f32, -0.5] {
+                let hard = [0.0f32, 1e-30, ONE_BELOW, 1.0, 2.0, -1.0, f32::NAN];
+                let grid = (0..1u32 << 16).map(|i| (i as f32 + 0.5) / 65_536.0);
+                // ξ at which the target crosses each octave start, and its neighbours.
+                let (mut total, mut w) = (0.0f32, 1.0f32);
+                for _ in 0..n {
+                    total += w;
+                    w *= 0.5;
+                }
+                let edges = (1..n).flat_map(|o| {
+                    let x = (2.0 - 2.0 * f32::from_bits((127 - o) << 23)) / total;
+                    (-3i32..=3).map(move |d| f32::from_bits(x.to_bits().wrapping_add_signed(d)))
+                });
+                for xi in hard.into_iter().chain(grid).chain(edges) {
+                    let fast = OctavePick::halving(n, gain, xi);
+                    let table = OctavePick::table(n, 2.0, gain, xi);
+                    assert_eq!(fields(fast), fields(table), "n {n}, gain {gain}, ξ {xi:e}");
+                    assert!(fast.octave < n && (0.0..1.0).contains(&fast.xi));
+                }
+            }
+        }
+    }
 
     /// Over a fine ξ grid, the estimator picks each octave in proportion to `|gain|^o`, hands
     /// the noise a remapped ξ in `[0, 1)` whose mean is ½ per octave, and signs it like `gain^o`.
