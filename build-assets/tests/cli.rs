@@ -239,6 +239,9 @@ fn report_json_is_the_documented_list_of_rows() {
                 .iter()
                 .find(|r| r["noise"] == name && r["variant"] == "stochastic")
                 .unwrap_or_else(|| panic!("no stochastic {name}"));
+            // Timed in alternating passes with the deterministic function: a finite ratio.
+            let speedup = s["speedup"].as_f64().expect("a speedup");
+            assert!(speedup.is_finite() && speedup > 0.0, "{name}: {speedup}");
             let rmse = &s["rmse"];
             // Averaging more ξ converges: RMSE falls roughly as 1/√k.
             let (r1, r64) = (rmse["1"].as_f64().unwrap(), rmse["64"].as_f64().unwrap());

@@ -358,6 +358,12 @@ fn report(
     if matches!(section, "all" | "stochastic") {
         use build_assets::report::stochastic;
         println!("stochastic noise (3D unless named, single thread, random-order points):");
+        println!(
+            "  (ns/eval: median of 9 passes; speedup: our deterministic time / this one, the median of 9 rounds"
+        );
+        println!(
+            "   of alternating passes of the two; for peer crates below 1 when ours is faster)"
+        );
         if !stochastic::HAS_PEERS {
             println!(
                 "  (peers not compiled in: add `--features peers` to measure noise-functions and fastnoise-lite in this run)"
@@ -391,7 +397,11 @@ fn report(
                 r.noise,
                 r.variant,
                 r.ns_per_eval,
-                r.speedup.map_or("-".into(), |s| format!("{s:.1}x")),
+                r.speedup.map_or("-".into(), |s| if s < 10.0 {
+                    format!("{s:.2}x")
+                } else {
+                    format!("{s:.1}x")
+                }),
                 g(&r.rmse, "1"),
                 g(&r.rmse, "4"),
                 g(&r.rmse, "16"),

@@ -32,7 +32,9 @@ pub struct Row {
     pub rmse_stbn: Option<BTreeMap<String, f64>>,
     /// Mean error at 64 samples (stochastic rows only).
     pub bias: Option<f64>,
-    /// Deterministic time / this time (stochastic rows only).
+    /// Our deterministic time / this time: the median over rounds of alternating passes of the
+    /// two, so both are measured on the same machine state. For stochastic rows the speedup
+    /// bought with the error; for peer rows below 1 when ours is faster.
     pub speedup: Option<f64>,
 }
 
@@ -116,23 +118,64 @@ fn random_points(n: usize, seed: u64) -> Vec<[f32; 3]> {
         .collect()
 }
 
-/// Nanoseconds per call of `f` over `pts` (best of 5 passes). Generic, so `f` is inlined into
-/// the loop as in a renderer's inner loop; 65 536 random points, so branch predictors cannot
-/// learn the sequence. The slices, not each point, go through `black_box`: a `black_box`ed
+/// Seconds for one pass of `f` over `pts`. Generic, so `f` is inlined into the loop as in a
+/// renderer's inner loop. The slices, not each point, go through `black_box`: a `black_box`ed
 /// `[f32; 3]` is written to the stack and read back in pieces of other widths, which stalls
 /// store-to-load forwarding and adds a delay to every call that no renderer pays.
-fn time<F: Fn([f32; 3], f32) -> f32>(pts: &[[f32; 3]], xis: &[f32], f: F) -> f64 {
-    let mut best = f64::MAX;
-    for _ in 0..5 {
-        let start = Instant::now();
-        let mut acc = 0.0f32;
-        for (p, &x) in black_box(pts).iter().zip(black_box(xis)) {
-            acc += f(*p, x);
-        }
-        black_box(acc);
-        best = best.min(start.elapsed().as_secs_f64() * 1e9 / pts.len() as f64);
+fn pass<F: Fn([f32; 3], f32) -> f32>(pts: &[[f32; 3]], xis: &[f32], f: F) -> f64 {
+    let start = Instant::now();
+    let mut acc = 0.0f32;
+    for (p, &x) in black_box(pts).iter().zip(black_box(xis)) {
+        acc += f(*p, x);
     }
-    best
+    black_box(acc);
+    start.elapsed().as_secs_f64()
+}
+
+/// Timed rounds (after one warm-up round).
+const ROUNDS: usize = 9;
+/// Points per chunk of a round.
+const CHUNK: usize = 2048;
+
+/// The median of `v`.
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Two functions timed together: ns per call of each (the median over rounds) and the median
+/// over rounds of the ratio of their times. A round runs both over all 65 536 random points
+/// (so branch predictors cannot learn the sequence), interleaved in chunks of 2048, the order
+/// alternating from chunk to chunk. On a shared machine the clock and the neighbours' load
+/// drift over seconds: two functions timed one after the other (as criterion does) can be
+/// measured at different speeds, while interleaved chunks, tens of microseconds apart, see
+/// the same machine.
+fn time_pair<A, B>(pts: &[[f32; 3]], xis: &[f32], a: A, b: B) -> (f64, f64, f64)
+where
+    A: Fn([f32; 3], f32) -> f32 + Copy,
+    B: Fn([f32; 3], f32) -> f32 + Copy,
+{
+    let round = || {
+        let (mut ta, mut tb) = (0.0, 0.0);
+        for (k, (p, x)) in pts.chunks(CHUNK).zip(xis.chunks(CHUNK)).enumerate() {
+            if k % 2 == 0 {
+                ta += pass(p, x, a);
+                tb += pass(p, x, b);
+            } else {
+                tb += pass(p, x, b);
+                ta += pass(p, x, a);
+            }
+        }
+        (ta, tb)
+    };
+    round();
+    let rounds: Vec<(f64, f64)> = (0..ROUNDS).map(|_| round()).collect();
+    let ns = |t: f64| t * 1e9 / pts.len() as f64;
+    (
+        median(rounds.iter().map(|r| ns(r.0)).collect()),
+        median(rounds.iter().map(|r| ns(r.1)).collect()),
+        median(rounds.iter().map(|r| r.0 / r.1).collect()),
+    )
 }
 
 /// ξ sources for the error columns: white noise, or the STBN mask's pixel sequence.
@@ -166,15 +209,21 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
         CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType,
     };
     use noise_functions::{CellDistance, Noise, Perlin};
-    let row = |noise: &str, variant: &str, ns: f64| Row {
+    // Each peer is timed in alternating passes with our deterministic function of the same
+    // noise (see `time_pair`); its row's `speedup` is ours / theirs (below 1: ours is faster).
+    let row = |noise: &str, variant: &str, (_, ns, ratio): (f64, f64, f64)| Row {
         noise: noise.into(),
         variant: variant.into(),
         ns_per_eval: ns,
         rmse: None,
         rmse_stbn: None,
         bias: None,
-        speedup: None,
+        speedup: Some(ratio),
     };
+    let fbm = Fractal::new(10, 2.0, 0.5);
+    let ours_perlin = |p: [f32; 3], _: f32| perlin3(p, 1);
+    let ours_fbm = move |p: [f32; 3], _: f32| fbm3(p, fbm, 1);
+    let ours_worley = |p: [f32; 3], _: f32| worley3_f1(p, 1);
     let fnl = |t: NoiseType, fractal: bool| {
         let mut n = FastNoiseLite::new();
         n.set_noise_type(Some(t));
@@ -200,32 +249,38 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
         row(
             "perlin3",
             "noise-functions",
-            time(pts, xis, |p, _| Perlin.sample3(p)),
+            time_pair(pts, xis, ours_perlin, |p, _| Perlin.sample3(p)),
         ),
         row(
             "perlin3",
             "fastnoise-lite",
-            time(pts, xis, |p, _| p1.get_noise_3d(p[0], p[1], p[2])),
+            time_pair(pts, xis, ours_perlin, |p, _| {
+                p1.get_noise_3d(p[0], p[1], p[2])
+            }),
         ),
         row(
             "fbm3",
             "noise-functions",
-            time(pts, xis, |p, _| nf_fbm.sample3(p)),
+            time_pair(pts, xis, ours_fbm, |p, _| nf_fbm.sample3(p)),
         ),
         row(
             "fbm3",
             "fastnoise-lite",
-            time(pts, xis, |p, _| p10.get_noise_3d(p[0], p[1], p[2])),
+            time_pair(pts, xis, ours_fbm, |p, _| {
+                p10.get_noise_3d(p[0], p[1], p[2])
+            }),
         ),
         row(
             "worley3",
             "noise-functions",
-            time(pts, xis, |p, _| nf_cell.sample3(p)),
+            time_pair(pts, xis, ours_worley, |p, _| nf_cell.sample3(p)),
         ),
         row(
             "worley3",
             "fastnoise-lite",
-            time(pts, xis, |p, _| cell.get_noise_3d(p[0], p[1], p[2])),
+            time_pair(pts, xis, ours_worley, |p, _| {
+                cell.get_noise_3d(p[0], p[1], p[2])
+            }),
         ),
     ]
 }
@@ -282,9 +337,11 @@ pub fn run_with(timed: usize) -> Vec<Row> {
         ($($name:literal: |$p:ident, $x:ident| $det:expr, $sto:expr;)*) => {{
             let mut t = BTreeMap::new();
             $(
-                t.insert($name, (
-                    time(&pts, &xis, |$p, $x| { let _ = $x; $det }),
-                    time(&pts, &xis, |$p, $x| { let _ = $x; $sto }),
+                t.insert($name, time_pair(
+                    &pts,
+                    &xis,
+                    |$p, $x| { let _ = $x; $det },
+                    |$p, $x| { let _ = $x; $sto },
                 ));
             )*
             t
@@ -307,7 +364,7 @@ pub fn run_with(timed: usize) -> Vec<Row> {
     };
     let mut rows = Vec::new();
     for (name, det, sto) in functions() {
-        let (det_ns, sto_ns) = times[name];
+        let (det_ns, sto_ns, speedup) = times[name];
         rows.push(Row {
             noise: name.into(),
             variant: "deterministic".into(),
@@ -331,26 +388,34 @@ pub fn run_with(timed: usize) -> Vec<Row> {
                 rmse: Some(w),
                 rmse_stbn: Some(b),
                 bias: Some(bias),
-                speedup: Some(det_ns / ns),
+                speedup: Some(speedup),
             });
         }
     }
     // The one-term estimators: the 27-cell sum sampled as well (one kernel evaluation).
-    let one_term: [(&str, f64, Sto); 2] = [
+    let one_term: [(&str, (f64, f64, f64), Sto); 2] = [
         (
             "sparse_conv3",
-            time(&pts, &xis, |p, x| sparse_conv3_stochastic1(p, 10, 1, x)),
+            time_pair(
+                &pts,
+                &xis,
+                |p, _| sparse_conv3(p, 10, 1),
+                |p, x| sparse_conv3_stochastic1(p, 10, 1, x),
+            ),
             Box::new(|p, x| sparse_conv3_stochastic1(p, 10, 1, x)),
         ),
         (
             "fbm_sparse_conv3",
-            time(&pts, &xis, |p, x| {
-                fbm_sparse_conv3_stochastic1(p, fbm, 10, 1, x)
-            }),
+            time_pair(
+                &pts,
+                &xis,
+                |p, _| fbm_sparse_conv3(p, fbm, 10, 1),
+                |p, x| fbm_sparse_conv3_stochastic1(p, fbm, 10, 1, x),
+            ),
             Box::new(move |p, x| fbm_sparse_conv3_stochastic1(p, fbm, 10, 1, x)),
         ),
     ];
-    for (name, ns, sto) in one_term {
+    for (name, (_, ns, speedup), sto) in one_term {
         let det = functions()
             .into_iter()
             .find(|f| f.0 == name)
@@ -361,7 +426,6 @@ pub fn run_with(timed: usize) -> Vec<Row> {
         let (b, _) = rmse(&img, &exact, &*sto, &|i, j| {
             stbn[j * SIDE * SIDE + i] as f32
         });
-        let det_ns = times[name].0;
         rows.push(Row {
             noise: name.into(),
             variant: "stochastic-1term".into(),
@@ -369,7 +433,7 @@ pub fn run_with(timed: usize) -> Vec<Row> {
             rmse: Some(w),
             rmse_stbn: Some(b),
             bias: Some(bias),
-            speedup: Some(det_ns / ns),
+            speedup: Some(speedup),
         });
     }
     rows.extend(peers(&pts, &xis));

@@ -1,6 +1,10 @@
 //! Fractal sums of octaves (fBm, Perlin 1985; eq. 9) and the one-octave estimator (eq. 10–11,
-//! Algorithm 2): the octave is importance-sampled by its weight, found by a linear search of the
-//! CDF, and the chosen octave's noise may itself be stochastic (it receives the remapped ξ).
+//! Algorithm 2): the octave is importance-sampled by its weight, and the chosen octave's noise
+//! may itself be stochastic (it receives the remapped ξ). Algorithm 2 finds the octave by a
+//! linear search of the CDF; here it is the count of octave starts at or below the target (a
+//! fixed number of compares), or for lacunarity 2 and gain ±½ read off the exponent of
+//! `2 − target` — the same octave either way, without the search's ξ-dependent exit, which a
+//! branch predictor misses about once per sample.
 //!
 //! Algorithm 2 in the paper normalises by `(1 − w^(n+1))/(1 − w)`; the sum of the `n` weights
 //! `w^0 … w^(n−1)` is `(1 − w^n)/(1 − w)`, which is what we use (summed directly, so gain → 1
@@ -158,12 +162,11 @@ impl OctavePick {
     /// frequency `2^o` and `(target − S_o)·2^o ∈ [0, 1)` are exact.
     #[inline(always)]
     fn halving(n: u32, gain: f32, xi: f32) -> Self {
-        let mut total = 0.0f32;
-        let mut a = 1.0f32;
-        for _ in 0..n {
-            total += a;
-            a *= 0.5;
-        }
+        // Σ_(o<n) 2^−o = 2 − 2^(1−n), computed in f32 as the running sum rounds it: exact up to
+        // n = 24, and 2 from n = 25 (2 − 2^−24 is a tie that rounds to even, 2), where the sum
+        // also stops growing. A closed form, not the loop: with a `Fractal` that is not a
+        // compile-time constant the loop's ten dependent adds would delay every sample.
+        let total = 2.0 - f32::from_bits((128 - n) << 23);
         let target = Self::target(xi, total);
         // In f64, where `2 − target` is exact for every f32 target (in f32 it rounds for
         // targets just below 1, to an octave too far).
