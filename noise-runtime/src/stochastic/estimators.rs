@@ -91,6 +91,31 @@ impl Narrowing {
     }
 }
 
+/// The two decisions of a fresh [`Narrowing`] (the corner of a 2D cell), exactly as two
+/// [`Narrowing::upper`] calls make them, but with the second decision's two candidate cuts
+/// computed before the first decision is known: the interval of the second decision is one of
+/// two, both products of the weights alone. That takes a multiply and a handful of dependent
+/// moves off the chain from the weights to the corner, where the 2D estimator spends its time
+/// waiting (it made the 2D estimator 1.25x faster). In 3D the same for the third decision, whose
+/// interval is one of four, measured slower than the sequential form: more work than the chain
+/// saves. Returns the masks of the two decisions (all ones: upper side).
+#[inline(always)]
+pub(crate) fn fresh_corner2(xi: f32, t: [f32; 2]) -> [u32; 2] {
+    const ONE: u64 = 1 << FIXED_BITS;
+    let r = Narrowing::new(xi).r;
+    let sign = |a: u64, b: u64| (a.wrapping_sub(b) as i64 >> 63) as u64;
+    let sel = |m: u64, a: u64, b: u64| b ^ ((a ^ b) & m);
+    let cut = |l: u64, t: u64| l.wrapping_mul(t) >> FIXED_BITS;
+    // First decision: the interval is [0, 1), its cut the first weight itself.
+    let (w0, w1) = (fixed(t[0]), fixed(t[1]));
+    let up0 = sign(r, w0);
+    // Second: on the upper side [0, w0), on the lower [w0, 1) with residue r − w0.
+    let c_up = cut(w0, w1);
+    let c_dn = cut(ONE.wrapping_sub(w0), w1);
+    let up1 = sign(sel(up0, r, r.wrapping_sub(w0)), sel(up0, c_up, c_dn));
+    [up0 as u32, up1 as u32]
+}
+
 /// Fractional bits of [`nested_corner`]'s fixed point.
 const FIXED_BITS: u32 = 23;
 
@@ -282,6 +307,52 @@ mod tests {
                         assert_eq!(up, u32::MAX, "ξ {xi}, t {t:?}, axis {a}");
                     }
                     assert!(n.r < n.l, "ξ {xi}, t {t:?}, axis {a}: r {} l {}", n.r, n.l);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fresh_corner2_is_the_sequential_narrowing() {
+        // Random weights and ξ, and every mix of the weights that are hard for the cuts (0, a
+        // few ulps, ½, just below 1, 1, a few ulps past 1) with ξ at and near the ends.
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / 16_777_216.0
+        };
+        let hard = [
+            0.0f32,
+            1e-7,
+            0.5,
+            f32::from_bits(0x3f7f_ffff),
+            1.0,
+            f32::from_bits(0x3f80_0002),
+        ];
+        let xis = [
+            0.0f32,
+            1e-7,
+            0.25,
+            0.5,
+            0.75,
+            f32::from_bits(0x3f7f_fffe),
+            ONE_BELOW,
+            1.0,
+        ];
+        let check = |xi: f32, t: [f32; 2]| {
+            let mut n = Narrowing::new(xi);
+            let seq = t.map(|ta| n.upper(ta));
+            assert_eq!(fresh_corner2(xi, t), seq, "ξ {xi:e}, t {t:?}");
+        };
+        for _ in 0..200_000 {
+            check(next(), [next(), next()]);
+        }
+        for &xi in &xis {
+            for &a in &hard {
+                for &b in &hard {
+                    check(xi, [a, b]);
                 }
             }
         }

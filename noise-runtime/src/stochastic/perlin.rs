@@ -4,7 +4,7 @@
 //! corner with probability equal to its interpolation weight, and only that corner's gradient
 //! is evaluated.
 
-use super::estimators::{Narrowing, nested_corner, unit_corner};
+use super::estimators::{Narrowing, fresh_corner2, nested_corner, unit_corner};
 use super::hash::{CORNER_MUL, PRIME, corner, hash4};
 use crate::math::{dfade, fade, split};
 
@@ -79,10 +79,19 @@ fn g4(h: u32) -> [f32; 4] {
 }
 
 /// 2D Perlin noise, about `[-1, 1]`.
-#[inline]
+#[inline(always)]
 pub fn perlin2(p: [f32; 2], seed: u32) -> f32 {
-    let (ix, x) = split(p[0]);
-    let (iy, y) = split(p[1]);
+    if crate::math::in_split_range(p) {
+        perlin2_with(p, seed, crate::math::split_in_range)
+    } else {
+        perlin2_with(p, seed, split)
+    }
+}
+
+#[inline(always)]
+fn perlin2_with(p: [f32; 2], seed: u32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
+    let (ix, x) = sp(p[0]);
+    let (iy, y) = sp(p[1]);
     let xp0 = (ix as u32).wrapping_mul(PRIME[0]);
     let yp0 = (iy as u32).wrapping_mul(PRIME[1]);
     let (xp1, yp1) = (xp0.wrapping_add(PRIME[0]), yp0.wrapping_add(PRIME[1]));
@@ -129,18 +138,33 @@ pub fn perlin2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
 }
 
 /// One-sample estimator of [`perlin2`] (Algorithm 1): one gradient, one ξ.
-#[inline]
+#[inline(always)]
 pub fn perlin2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
-    let (ix, x) = split(p[0]);
-    let (iy, y) = split(p[1]);
-    let c = nested_corner(xi, [fade(x), fade(y)]);
-    let g = g2(corner(
-        seed,
-        (ix.wrapping_add(c.int(0)) as u32).wrapping_mul(PRIME[0]),
-        (iy.wrapping_add(c.int(1)) as u32).wrapping_mul(PRIME[1]),
-        0,
-    ));
-    let o = c.floats();
+    if crate::math::in_split_range(p) {
+        perlin2_stochastic_with(p, seed, xi, crate::math::split_in_range)
+    } else {
+        perlin2_stochastic_with(p, seed, xi, split)
+    }
+}
+
+#[inline(always)]
+fn perlin2_stochastic_with(p: [f32; 2], seed: u32, xi: f32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
+    let (ix, x) = sp(p[0]);
+    let (iy, y) = sp(p[1]);
+    let cell = [ix, iy];
+    let t = [fade(x), fade(y)];
+    // As in 3D, only the chosen corner is hashed; its two decisions come from `fresh_corner2`.
+    let up = fresh_corner2(xi, t);
+    let mut h = seed;
+    let mut k = 0;
+    for (a, &up) in up.iter().enumerate() {
+        h ^= (cell[a] as u32)
+            .wrapping_mul(PRIME[a])
+            .wrapping_add(up & PRIME[a]);
+        k |= (up & 1) << a;
+    }
+    let g = g2(h.wrapping_mul(CORNER_MUL));
+    let o = unit_corner(k);
     g[0] * (x - o[0]) + g[1] * (y - o[1])
 }
 
