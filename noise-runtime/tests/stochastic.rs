@@ -61,6 +61,18 @@ fn pairs() -> Vec<Pair> {
             |p| fbm3(p, Fractal::new(6, 2.0, 0.5), 3),
             |p, x| fbm3_stochastic(p, Fractal::new(6, 2.0, 0.5), 3, x),
         ),
+        // The octave choice by a table of the CDF (any lacunarity and gain), and the
+        // exponent-bit form with a negative gain (alternating signs).
+        (
+            "fbm3 (lacunarity 1.93, gain 0.6)",
+            |p| fbm3(p, Fractal::new(5, 1.93, 0.6), 3),
+            |p, x| fbm3_stochastic(p, Fractal::new(5, 1.93, 0.6), 3, x),
+        ),
+        (
+            "fbm3 (gain -0.5)",
+            |p| fbm3(p, Fractal::new(5, 2.0, -0.5), 3),
+            |p, x| fbm3_stochastic(p, Fractal::new(5, 2.0, -0.5), 3, x),
+        ),
         ("sparse_conv3", sparse, |p, x| {
             sparse_conv3_stochastic(p, 10, 3, x)
         }),
