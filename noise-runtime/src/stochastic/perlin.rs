@@ -141,7 +141,7 @@ pub fn perlin2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
 #[inline(always)]
 pub fn perlin2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
     if crate::math::in_split_range(p) {
-        perlin2_stochastic_with(p, seed, xi, crate::math::split_in_range)
+        perlin2_stochastic_with(p, seed, xi, crate::math::split_in_range_branchless)
     } else {
         perlin2_stochastic_with(p, seed, xi, split)
     }
@@ -266,7 +266,7 @@ pub fn perlin3_grad_cell(cell: [i32; 3], f: [f32; 3], seed: u32) -> (f32, [f32; 
 #[inline(always)]
 pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     if crate::math::in_split_range(p) {
-        perlin3_stochastic_with(p, seed, xi, crate::math::split_in_range)
+        perlin3_stochastic_with(p, seed, xi, crate::math::split_in_range_branchless)
     } else {
         perlin3_stochastic_with(p, seed, xi, split)
     }
