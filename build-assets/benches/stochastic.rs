@@ -2,6 +2,11 @@
 //! random-order points (Fajardo & Pharr Table 1 on this CPU). The RMSE each stochastic variant
 //! pays is in `noisebake report stochastic` (same functions, same settings).
 //!
+//! Criterion times one function after another, each for a couple of seconds; on a machine whose
+//! clock or neighbours' load drifts over seconds (a shared VM), the ratio of two of these times
+//! moves with the drift. The report times each deterministic/stochastic pair (and each peer
+//! against ours) in interleaved chunks of the same points, and its speedups are the steady ones.
+//!
 //! `cargo bench -p build-assets --bench stochastic`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
