@@ -162,6 +162,8 @@ fn perlin2_stochastic_with(p: [f32; 2], seed: u32, xi: f32, sp: impl Fn(f32) -> 
     let cell = [ix, iy];
     let t = [fade(x), fade(y)];
     // As in 3D, only the chosen corner is hashed; its two decisions come from `fresh_corner2`.
+    // (This loop and the 3D one, shared as one generic helper, measured 15 % slower here: LLVM
+    // then packed the two cell products into emulated 32-bit SIMD multiplies.)
     let up = fresh_corner2(xi, t);
     let mut h = seed;
     let mut k = 0;
