@@ -210,7 +210,7 @@ pub(crate) fn octave_seed(seed: u32, o: u32) -> u32 {
 }
 
 /// fBm of 3D Perlin noise (each octave with its own seed).
-#[inline]
+#[inline(always)]
 pub fn fbm3(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
     fractal(p, f, |q, o| perlin3(q, octave_seed(seed, o)))
 }
