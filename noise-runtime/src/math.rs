@@ -249,15 +249,24 @@ pub fn sqrt_f64(x: f64) -> f64 {
 /// two conditional moves per axis.
 #[inline(always)]
 pub fn split_in_range(x: f32) -> (i32, f32) {
-    const MAGIC: f32 = 12_582_912.0;
-    let y = x + MAGIC;
-    let r = y - MAGIC;
-    let f = x - r;
+    let (r, f) = nearest(x);
     // Strictly negative, not −0: an integer test of the bits, as in `split`.
     let down = (f.to_bits() > 0x8000_0000) as u32;
     (
-        (y.to_bits().wrapping_sub(MAGIC.to_bits()) as i32) - down as i32,
+        r - down as i32,
         f + f32::from_bits(down.wrapping_neg() & 0x3f80_0000),
+    )
+}
+
+/// The nearest integer `r` to `x` and `x − r ∈ [−½, ½]`, for `|x| < 2^22`: the first half of
+/// [`split_in_range`] (see there).
+#[inline(always)]
+fn nearest(x: f32) -> (i32, f32) {
+    const MAGIC: f32 = 12_582_912.0;
+    let y = x + MAGIC;
+    (
+        y.to_bits().wrapping_sub(MAGIC.to_bits()) as i32,
+        x - (y - MAGIC),
     )
 }
 
@@ -269,19 +278,13 @@ pub fn split_in_range(x: f32) -> (i32, f32) {
 /// faster with the masked form. The estimators take this one.
 #[inline(always)]
 pub fn split_in_range_branchless(x: f32) -> (i32, f32) {
-    const MAGIC: f32 = 12_582_912.0;
-    let y = x + MAGIC;
-    let r = y - MAGIC;
-    let f = x - r;
+    let (r, f) = nearest(x);
     // The sign of `f`, with −0 counted as +0 (adding +0 turns −0 into +0 and leaves every other
     // value alone): strictly negative offsets step down a cell.
     let sign = (f + 0.0).to_bits() & 0x8000_0000;
     // `½ − (±½)`: 1 for a negative offset, else 0.
     let step = 0.5 - f32::from_bits(sign | 0x3f00_0000);
-    (
-        (y.to_bits().wrapping_sub(MAGIC.to_bits()) as i32) - (sign >> 31) as i32,
-        f + step,
-    )
+    (r - (sign >> 31) as i32, f + step)
 }
 
 /// Whether every coordinate is finite and below 2^22 in magnitude (then [`split_in_range`]
