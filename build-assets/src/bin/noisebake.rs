@@ -359,10 +359,10 @@ fn report(
         use build_assets::report::stochastic;
         println!("stochastic noise (3D unless named, single thread, random-order points):");
         println!(
-            "  (ns/eval: median of 9 passes; speedup: our deterministic time / this one, the median of 9 rounds"
+            "  (ns/eval: median of 9 rounds; speedup: our deterministic time / this one, the median over 9 rounds"
         );
         println!(
-            "   of alternating passes of the two; for peer crates below 1 when ours is faster)"
+            "   of the two run in interleaved chunks of the same points; for peer crates below 1 when ours is faster)"
         );
         if !stochastic::HAS_PEERS {
             println!(
