@@ -179,12 +179,9 @@ pub fn sparse_conv3(p: [f32; 3], n: u32, seed: u32) -> f32 {
 pub fn sparse_conv3_stochastic(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
     let n = n.clamp(1, 64);
     let xi = unit_bits(sanitize_xi(xi));
-    let r = Reach::new(p, seed);
-    // The impulse of every cell first, in one fixed-length pass without branches.
-    let idx: [u32; 27] = core::array::from_fn(|c| importance_index(rotate(xi, r.hash[c]), n));
     let mut sum = 0.0;
-    for ((h, d), &i) in r.iter().zip(&idx) {
-        let (q, s) = impulse(h, i);
+    for (h, d) in Reach::new(p, seed).iter() {
+        let (q, s) = impulse(h, importance_index(rotate(xi, h), n));
         sum += flip(kernel(r2(d, q)), s);
     }
     0.5 * sum
