@@ -152,9 +152,15 @@ static UNIT: [[f32; 4]; 16] = {
 
 impl<const D: usize> Corner<D> {
     /// 1 if axis `a` took its upper side, else 0.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn int(self, a: usize) -> i32 {
         (self.0[a] & 1) as i32
+    }
+
+    /// Per axis all ones if it took its upper side, else 0.
+    #[inline(always)]
+    pub(crate) fn masks(self) -> [u32; D] {
+        self.0
     }
 
     /// The corner's offsets per axis as floats: `[1.0 or 0.0; 4]` (lanes past `D` are 0).
