@@ -2,6 +2,11 @@
 //! over the 4 corners of the simplex holding the point, with weights `(½ − r²)⁴ ≥ 0`; the
 //! estimator picks one corner with probability proportional to its weight (eq. 1 with
 //! importance sampling) and evaluates only that corner's gradient.
+//!
+//! Both are free of branches on the point: which simplex holds it comes from the ranks of its
+//! offsets, a weight's support from a `max`, the gradient from a table, and the estimator's
+//! corner from a count of compares. On random points the first form's branches (the simplex's
+//! six cases, a corner's support, the gradient's cases) mispredicted several times a call.
 
 use super::estimators::sanitize_xi;
 use super::hash::hash3;
@@ -20,21 +25,15 @@ fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
     // Unskewed offset from the cell origin: f − (Σf)·G3 (exact, independent of the magnitude of p).
     let t = (fx + fy + fz) * G3;
     let d0 = [fx - t, fy - t, fz - t];
-    let (o1, o2) = if d0[0] >= d0[1] {
-        if d0[1] >= d0[2] {
-            ([1, 0, 0], [1, 1, 0])
-        } else if d0[0] >= d0[2] {
-            ([1, 0, 0], [1, 0, 1])
-        } else {
-            ([0, 0, 1], [1, 0, 1])
-        }
-    } else if d0[1] < d0[2] {
-        ([0, 0, 1], [0, 1, 1])
-    } else if d0[0] < d0[2] {
-        ([0, 1, 0], [0, 1, 1])
-    } else {
-        ([0, 1, 0], [1, 1, 0])
-    };
+    // The simplex is the one whose path from the cell's origin steps first along the largest
+    // offset, then the second: axis `a` is in the second corner when its rank (the number of
+    // other offsets it is at least, ties going to the earlier axis) is 2, in the third when it
+    // is at least 1.
+    let ge = |a: usize, b: usize| (d0[a] >= d0[b]) as i32;
+    let (xy, yz, xz) = (ge(0, 1), ge(1, 2), ge(0, 2));
+    let rank = [xy + xz, 1 - xy + yz, 2 - xz - yz];
+    let o1 = rank.map(|r| (r >= 2) as i32);
+    let o2 = rank.map(|r| (r >= 1) as i32);
     let cell = |o: [i32; 3]| {
         [
             i.wrapping_add(o[0]),
@@ -55,24 +54,39 @@ fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
     )
 }
 
+/// A corner's weight `max(½ − r², 0)⁴`.
 #[inline(always)]
 fn weight(d: [f32; 3]) -> f32 {
-    let t = 0.5 - (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    if t > 0.0 { (t * t) * (t * t) } else { 0.0 }
+    let t = (0.5 - (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])).max(0.0);
+    (t * t) * (t * t)
 }
+
+/// The 12 edge gradients of improved noise picked by 4 hash bits, padded to 16 as Perlin's
+/// reference does: `u = x` for `h < 8` else `y`; `v = y` for `h < 4`, `x` for `h` 12 and 14,
+/// else `z`; the gradient is `±u ± v` by bits 0 and 1.
+static GRAD: [[f32; 3]; 16] = {
+    let mut g = [[0.0f32; 3]; 16];
+    let mut h = 0;
+    while h < 16 {
+        let u = if h < 8 { 0 } else { 1 };
+        let v = if h < 4 {
+            1
+        } else if h == 12 || h == 14 {
+            0
+        } else {
+            2
+        };
+        g[h][u] = if h & 1 == 0 { 1.0 } else { -1.0 };
+        g[h][v] = if h & 2 == 0 { 1.0 } else { -1.0 };
+        h += 1;
+    }
+    g
+};
 
 #[inline(always)]
 fn grad_dot(c: [i32; 3], d: [f32; 3], seed: u32) -> f32 {
-    // The 12 edge gradients picked from the hash's top bits (as in improved noise).
-    let h = hash3(c[0], c[1], c[2], seed) >> 28;
-    let (u, v) = match h {
-        0..=3 => (d[0], d[1]),
-        4..=7 => (d[0], d[2]),
-        8..=11 => (d[1], d[2]),
-        12 | 14 => (d[1], d[0]),
-        _ => (d[1], d[2]),
-    };
-    (if h & 1 == 0 { u } else { -u }) + (if h & 2 == 0 { v } else { -v })
+    let g = GRAD[(hash3(c[0], c[1], c[2], seed) >> 28) as usize];
+    g[0] * d[0] + g[1] * d[1] + g[2] * d[2]
 }
 
 /// 3D simplex noise, about `[-1, 1]`.
@@ -81,35 +95,162 @@ pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
     let (c, d) = corners(p);
     let mut n = 0.0;
     for k in 0..4 {
-        let w = weight(d[k]);
-        if w > 0.0 {
-            n += w * grad_dot(c[k], d[k], seed);
-        }
+        n += weight(d[k]) * grad_dot(c[k], d[k], seed);
     }
     SCALE * n
 }
 
 /// One-sample estimator of [`simplex3`]: one gradient, chosen with probability ∝ its weight.
+///
+/// On a CPU this saves little: choosing a corner needs all four weights, which is most of
+/// [`simplex3`]'s work, and the three gradients it skips are a hash and a dot product each
+/// (`noisebake report`: about 1.0×). It is here for completeness, and for fractal sums, where
+/// one octave instead of all of them is the saving.
 #[inline]
 pub fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     let (c, d) = corners(p);
     let w = [weight(d[0]), weight(d[1]), weight(d[2]), weight(d[3])];
-    let total = w[0] + w[1] + w[2] + w[3];
+    // The weights laid end to end; the corner is the number of their ends at or below
+    // ξ·total, a count of compares rather than a search. The target is kept below the total
+    // (the product rounds up to it for ξ just below 1), so a corner of weight 0, whose end is
+    // the one before it, is never the one counted to.
+    let ends = [w[0], w[0] + w[1], w[0] + w[1] + w[2]];
+    let total = ends[2] + w[3];
     if total <= 0.0 {
         return 0.0;
     }
-    let mut target = sanitize_xi(xi) * total;
-    let mut k = 3;
-    for (i, &wi) in w.iter().enumerate() {
-        if target < wi {
-            k = i;
-            break;
+    let target = (sanitize_xi(xi) * total).min(f32::from_bits(total.to_bits() - 1));
+    let k = ends.iter().map(|&e| (target >= e) as usize).sum::<usize>();
+    SCALE * total * grad_dot(c[k & 3], d[k & 3], seed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The plain form: the simplex by its six cases, a corner's support by a test, the
+    /// gradient by Perlin's reference cases, the corner by a linear search (which asserts
+    /// that it never lands on a corner of weight 0).
+    mod plain {
+        use super::super::{G3, SCALE, hash3, sanitize_xi, split};
+
+        fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
+            let s = (p[0] + p[1] + p[2]) * (1.0 / 3.0);
+            let (i, fx) = split(p[0] + s);
+            let (j, fy) = split(p[1] + s);
+            let (k, fz) = split(p[2] + s);
+            let t = (fx + fy + fz) * G3;
+            let d0 = [fx - t, fy - t, fz - t];
+            let (o1, o2) = if d0[0] >= d0[1] {
+                if d0[1] >= d0[2] {
+                    ([1, 0, 0], [1, 1, 0])
+                } else if d0[0] >= d0[2] {
+                    ([1, 0, 0], [1, 0, 1])
+                } else {
+                    ([0, 0, 1], [1, 0, 1])
+                }
+            } else if d0[1] < d0[2] {
+                ([0, 0, 1], [0, 1, 1])
+            } else if d0[0] < d0[2] {
+                ([0, 1, 0], [0, 1, 1])
+            } else {
+                ([0, 1, 0], [1, 1, 0])
+            };
+            let cell = |o: [i32; 3]| [i + o[0], j + o[1], k + o[2]];
+            let off = |o: [i32; 3], n: f32| {
+                [
+                    d0[0] - o[0] as f32 + n * G3,
+                    d0[1] - o[1] as f32 + n * G3,
+                    d0[2] - o[2] as f32 + n * G3,
+                ]
+            };
+            (
+                [cell([0, 0, 0]), cell(o1), cell(o2), cell([1, 1, 1])],
+                [d0, off(o1, 1.0), off(o2, 2.0), off([1, 1, 1], 3.0)],
+            )
         }
-        target -= wi;
+
+        fn weight(d: [f32; 3]) -> f32 {
+            let t = 0.5 - (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if t > 0.0 { (t * t) * (t * t) } else { 0.0 }
+        }
+
+        fn grad_dot(c: [i32; 3], d: [f32; 3], seed: u32) -> f32 {
+            let h = hash3(c[0], c[1], c[2], seed) >> 28;
+            let u = if h < 8 { d[0] } else { d[1] };
+            let v = match h {
+                0..4 => d[1],
+                12 | 14 => d[0],
+                _ => d[2],
+            };
+            (if h & 1 == 0 { u } else { -u }) + (if h & 2 == 0 { v } else { -v })
+        }
+
+        pub(super) fn simplex3(p: [f32; 3], seed: u32) -> f32 {
+            let (c, d) = corners(p);
+            let mut n = 0.0;
+            for k in 0..4 {
+                let w = weight(d[k]);
+                if w > 0.0 {
+                    n += w * grad_dot(c[k], d[k], seed);
+                }
+            }
+            SCALE * n
+        }
+
+        pub(super) fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
+            let (c, d) = corners(p);
+            let w = d.map(weight);
+            let total = w[0] + w[1] + w[2] + w[3];
+            if total <= 0.0 {
+                return 0.0;
+            }
+            let target = (sanitize_xi(xi) * total).min(f32::from_bits(total.to_bits() - 1));
+            let mut end = 0.0;
+            let mut k = 3;
+            for (i, &wi) in w.iter().enumerate().take(3) {
+                end += wi;
+                if target < end {
+                    k = i;
+                    break;
+                }
+            }
+            assert!(w[k] > 0.0, "a corner of weight 0 at {p:?}, ξ {xi}");
+            SCALE * total * grad_dot(c[k], d[k], seed)
+        }
     }
-    // Guard against rounding landing on a zero-weight corner.
-    while w[k] <= 0.0 {
-        k -= 1;
+
+    #[test]
+    fn branch_free_forms_are_the_plain_ones() {
+        // Equal as numbers (a gradient's unused axis adds a zero, which can turn a −0 into +0),
+        // at random points and at points where offsets tie (the diagonal, the cell's faces),
+        // where the rank order must pick the simplex the six cases pick.
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / 16_777_216.0
+        };
+        let xis = [0.0, 1e-7, 0.25, 0.5, 0.999_999, 1.0];
+        for i in 0..30_000 {
+            let p = if i < 20_000 {
+                [
+                    next() * 64.0 - 32.0,
+                    next() * 64.0 - 32.0,
+                    next() * 64.0 - 32.0,
+                ]
+            } else {
+                let (t, u) = ((i / 5) as f32 / 97.0 - 30.0, next() * 8.0);
+                [[t, t, t], [t, t, u], [t, u, t], [u, t, t], [t, -t, 0.5 * t]][i % 5]
+            };
+            assert_eq!(simplex3(p, 7), plain::simplex3(p, 7), "{p:?}");
+            let xi = if i % 7 == 0 { xis[i % 6] } else { next() };
+            assert_eq!(
+                simplex3_stochastic(p, 7, xi),
+                plain::simplex3_stochastic(p, 7, xi),
+                "{p:?}, ξ {xi}"
+            );
+        }
     }
-    SCALE * total * grad_dot(c[k], d[k], seed)
 }
