@@ -18,6 +18,28 @@ const SCALE: f32 = 32.0;
 /// The simplex corners of `p`: lattice cell and offsets of each corner.
 #[inline(always)]
 fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
+    corners_by(p, rank_order)
+}
+
+/// The simplex holding the unskewed offset `d0` from its cell's origin, as the steps to its
+/// second and third corners. The simplex is the one whose path from the cell's origin steps
+/// first along the largest offset, then the second: axis `a` is in the second corner when its
+/// rank (the number of other offsets it is at least, ties going to the earlier axis) is 2, in
+/// the third when it is at least 1.
+#[inline(always)]
+fn rank_order(d0: [f32; 3]) -> ([i32; 3], [i32; 3]) {
+    let ge = |a: usize, b: usize| (d0[a] >= d0[b]) as i32;
+    let (xy, yz, xz) = (ge(0, 1), ge(1, 2), ge(0, 2));
+    let rank = [xy + xz, 1 - xy + yz, 2 - xz - yz];
+    (rank.map(|r| (r >= 2) as i32), rank.map(|r| (r >= 1) as i32))
+}
+
+/// [`corners`] with the simplex chosen by `order` (see [`rank_order`]).
+#[inline(always)]
+fn corners_by(
+    p: [f32; 3],
+    order: impl Fn([f32; 3]) -> ([i32; 3], [i32; 3]),
+) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
     let s = (p[0] + p[1] + p[2]) * (1.0 / 3.0);
     let (i, fx) = split(p[0] + s);
     let (j, fy) = split(p[1] + s);
@@ -25,15 +47,7 @@ fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
     // Unskewed offset from the cell origin: f − (Σf)·G3 (exact, independent of the magnitude of p).
     let t = (fx + fy + fz) * G3;
     let d0 = [fx - t, fy - t, fz - t];
-    // The simplex is the one whose path from the cell's origin steps first along the largest
-    // offset, then the second: axis `a` is in the second corner when its rank (the number of
-    // other offsets it is at least, ties going to the earlier axis) is 2, in the third when it
-    // is at least 1.
-    let ge = |a: usize, b: usize| (d0[a] >= d0[b]) as i32;
-    let (xy, yz, xz) = (ge(0, 1), ge(1, 2), ge(0, 2));
-    let rank = [xy + xz, 1 - xy + yz, 2 - xz - yz];
-    let o1 = rank.map(|r| (r >= 2) as i32);
-    let o2 = rank.map(|r| (r >= 1) as i32);
+    let (o1, o2) = order(d0);
     let cell = |o: [i32; 3]| {
         [
             i.wrapping_add(o[0]),
@@ -132,42 +146,26 @@ mod tests {
     /// gradient by Perlin's reference cases, the corner by a linear search (which asserts
     /// that it never lands on a corner of weight 0).
     mod plain {
-        use super::super::{G3, SCALE, hash3, sanitize_xi, split};
+        use super::super::{SCALE, corners_by, hash3, sanitize_xi};
 
         fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
-            let s = (p[0] + p[1] + p[2]) * (1.0 / 3.0);
-            let (i, fx) = split(p[0] + s);
-            let (j, fy) = split(p[1] + s);
-            let (k, fz) = split(p[2] + s);
-            let t = (fx + fy + fz) * G3;
-            let d0 = [fx - t, fy - t, fz - t];
-            let (o1, o2) = if d0[0] >= d0[1] {
-                if d0[1] >= d0[2] {
-                    ([1, 0, 0], [1, 1, 0])
-                } else if d0[0] >= d0[2] {
-                    ([1, 0, 0], [1, 0, 1])
+            corners_by(p, |d0| {
+                if d0[0] >= d0[1] {
+                    if d0[1] >= d0[2] {
+                        ([1, 0, 0], [1, 1, 0])
+                    } else if d0[0] >= d0[2] {
+                        ([1, 0, 0], [1, 0, 1])
+                    } else {
+                        ([0, 0, 1], [1, 0, 1])
+                    }
+                } else if d0[1] < d0[2] {
+                    ([0, 0, 1], [0, 1, 1])
+                } else if d0[0] < d0[2] {
+                    ([0, 1, 0], [0, 1, 1])
                 } else {
-                    ([0, 0, 1], [1, 0, 1])
+                    ([0, 1, 0], [1, 1, 0])
                 }
-            } else if d0[1] < d0[2] {
-                ([0, 0, 1], [0, 1, 1])
-            } else if d0[0] < d0[2] {
-                ([0, 1, 0], [0, 1, 1])
-            } else {
-                ([0, 1, 0], [1, 1, 0])
-            };
-            let cell = |o: [i32; 3]| [i + o[0], j + o[1], k + o[2]];
-            let off = |o: [i32; 3], n: f32| {
-                [
-                    d0[0] - o[0] as f32 + n * G3,
-                    d0[1] - o[1] as f32 + n * G3,
-                    d0[2] - o[2] as f32 + n * G3,
-                ]
-            };
-            (
-                [cell([0, 0, 0]), cell(o1), cell(o2), cell([1, 1, 1])],
-                [d0, off(o1, 1.0), off(o2, 2.0), off([1, 1, 1], 3.0)],
-            )
+            })
         }
 
         fn weight(d: [f32; 3]) -> f32 {
