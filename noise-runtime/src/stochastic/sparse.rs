@@ -130,7 +130,7 @@ impl Reach {
     /// depends on where `p` lies in its cell (such branches mispredict on random points); the
     /// loops over the compacted cells then exit on one count. A cell's offset is not stored
     /// but made from its block number when read: a byte per cell instead of three floats,
-    /// and a quarter of the memory to clear.
+    /// and a third of the memory to clear (135 bytes instead of 432).
     #[inline(always)]
     pub(crate) fn new(p: [f32; 3], seed: u32) -> Self {
         let (hp, f, slab) = block(p);
