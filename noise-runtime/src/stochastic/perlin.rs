@@ -464,15 +464,65 @@ mod tests {
         GRAD4.iter().position(|&r| r == g).unwrap()
     }
 
+    /// The gradient row the lower corner of the 3D cell `c` gets in [`perlin3`] (the top four
+    /// bits of its corner hash).
+    fn index3(c: [i32; 3], seed: u32) -> usize {
+        let ([x, y, z], _) = cell_products(c[0], c[1], c[2]);
+        (corner(seed, x, y, z) >> 28) as usize
+    }
+
+    /// Asserts that the gradient indices `(i, j)` of 65 536 pairs of neighbouring cells, out of
+    /// `B` gradients, look independent and uniform: the χ² of the `B × B` contingency table
+    /// (`B² − 1` degrees of freedom) and of the first index alone (`B − 1`) each below its mean
+    /// plus 6σ (σ = √(2·dof)). A hash that misses an axis's product or mixes too little puts
+    /// whole rows into few bins and fails by orders of magnitude.
+    fn assert_independent<const B: usize>(
+        pairs: impl Iterator<Item = (usize, usize)>,
+        what: impl core::fmt::Debug,
+    ) {
+        let mut joint = [[0u32; B]; B];
+        let mut single = [0u32; B];
+        let mut n = 0;
+        for (i, j) in pairs {
+            joint[i][j] += 1;
+            single[i] += 1;
+            n += 1;
+        }
+        let chi2 = |obs: &mut dyn Iterator<Item = u32>, bins: usize| {
+            let expect = n as f64 / bins as f64;
+            obs.map(|o| (o as f64 - expect).powi(2) / expect)
+                .sum::<f64>()
+        };
+        let limit = |dof: usize| dof as f64 + 6.0 * (2.0 * dof as f64).sqrt();
+        let c1 = chi2(&mut single.iter().copied(), B);
+        let c2 = chi2(&mut joint.iter().flatten().copied(), B * B);
+        assert!(c1 < limit(B - 1), "{what:?}: χ² {c1} of the indices");
+        assert!(c2 < limit(B * B - 1), "{what:?}: χ² {c2} of the pairs");
+    }
+
+    #[test]
+    fn neighbouring_3d_cells_get_independent_gradients() {
+        // The cells of a 64 × 32 × 32 block near the origin and far out, each against its
+        // neighbour along every axis and two diagonals.
+        let steps = [[1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [1, 1, 1]];
+        for origin in [[0i32; 3], [-8_000_000, 123, 4_000_000]] {
+            for step in steps {
+                let pairs = (0..65_536i32).map(|k| {
+                    let c = [k & 63, k >> 6 & 31, k >> 11];
+                    let c: [i32; 3] = core::array::from_fn(|a| origin[a] + c[a]);
+                    let d: [i32; 3] = core::array::from_fn(|a| c[a] + step[a]);
+                    (index3(c, 3), index3(d, 3))
+                });
+                assert_independent::<16>(pairs, (origin, step));
+            }
+        }
+    }
+
     #[test]
     fn neighbouring_4d_cells_get_independent_gradients() {
-        // The one-multiply corner hash, over 65 536 cells of a 16⁴ block (near the origin and
-        // far out): each cell's gradient against its neighbour's along every axis and along
-        // two diagonals (the report samples w = x + z), as a 32 × 32 contingency table.
-        // Independence gives χ² with 1023 degrees of freedom (mean 1023, σ ≈ 45); 6σ above
-        // the mean fails. A hash missing a per-axis product, or xoring two axes' products
-        // alike, puts whole rows into one bin and fails by orders of magnitude.
-        let steps: [[i32; 4]; 6] = [
+        // The cells of a 16⁴ block near the origin and far out, each against its neighbour
+        // along every axis and two diagonals (the report samples w = x + z).
+        let steps = [
             [1, 0, 0, 0],
             [0, 1, 0, 0],
             [0, 0, 1, 0],
@@ -482,24 +532,12 @@ mod tests {
         ];
         for origin in [[0i32; 4], [-8_000_000, 123, 4_000_000, -77]] {
             for step in steps {
-                let mut joint = [[0u32; 32]; 32];
-                let mut single = [0u32; 32];
-                for k in 0..65_536i32 {
+                let pairs = (0..65_536i32).map(|k| {
                     let c: [i32; 4] = core::array::from_fn(|a| origin[a] + (k >> (4 * a) & 15));
                     let d: [i32; 4] = core::array::from_fn(|a| c[a] + step[a]);
-                    let (i, j) = (index4(c, 3), index4(d, 3));
-                    joint[i][j] += 1;
-                    single[i] += 1;
-                }
-                let chi2 = |obs: &mut dyn Iterator<Item = u32>, expect: f64| {
-                    obs.map(|o| (o as f64 - expect).powi(2) / expect)
-                        .sum::<f64>()
-                };
-                let c1 = chi2(&mut single.iter().copied(), 2048.0);
-                let c2 = chi2(&mut joint.iter().flatten().copied(), 64.0);
-                // 31 degrees of freedom: mean 31, σ ≈ 7.9.
-                assert!(c1 < 31.0 + 6.0 * 7.9, "{origin:?} {step:?}: χ² {c1}");
-                assert!(c2 < 1023.0 + 6.0 * 45.2, "{origin:?} {step:?}: χ² {c2}");
+                    (index4(c, 3), index4(d, 3))
+                });
+                assert_independent::<32>(pairs, (origin, step));
             }
         }
     }
