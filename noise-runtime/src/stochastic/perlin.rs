@@ -367,6 +367,13 @@ fn grad4(lo: [u32; 4], up: [u32; 4], seed: u32) -> [f32; 4] {
     g4(h.wrapping_mul(CORNER_MUL))
 }
 
+/// `g · (f − o)`, the gradient term of a 4D corner at offset `o` (0 or 1 per axis), summed in
+/// pairs: the same order in [`perlin4`] and its estimator.
+#[inline(always)]
+fn dot4(g: [f32; 4], f: [f32; 4], o: [f32; 4]) -> f32 {
+    (g[0] * (f[0] - o[0]) + g[1] * (f[1] - o[1])) + (g[2] * (f[2] - o[2]) + g[3] * (f[3] - o[3]))
+}
+
 /// Corner `c` of a 4D cell (bit `a` set: upper side on axis `a`) as per-axis masks.
 #[inline(always)]
 fn corner_masks(c: usize) -> [u32; 4] {
@@ -391,10 +398,8 @@ fn perlin4_with(p: [f32; 4], seed: u32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
     // (x first, then y, z, w), not as a loop collapsing a table of 16 values, which LLVM left
     // rolled (116 ns a call instead of 49).
     let corner = |c: usize| {
-        let g = grad4(lo, corner_masks(c), seed);
         let o: [f32; 4] = core::array::from_fn(|a| ((c >> a) & 1) as f32);
-        (g[0] * (f[0] - o[0]) + g[1] * (f[1] - o[1]))
-            + (g[2] * (f[2] - o[2]) + g[3] * (f[3] - o[3]))
+        dot4(grad4(lo, corner_masks(c), seed), f, o)
     };
     let x = |c: usize| lerp(u[0], corner(c), corner(c + 1));
     let cube = |w: usize| {
@@ -420,7 +425,7 @@ pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
     for c in 0..16usize {
         let b: [i32; 4] = core::array::from_fn(|a| ((c >> a) & 1) as i32);
         let g = grad4(lo, corner_masks(c), seed);
-        let dot: f32 = (0..4).map(|a| g[a] * (f[a] - b[a] as f32)).sum();
+        let dot = dot4(g, f, b.map(|v| v as f32));
         let w: [f32; 4] = core::array::from_fn(|a| if b[a] == 1 { u[a] } else { 1.0 - u[a] });
         let s: [f32; 4] = core::array::from_fn(|a| if b[a] == 1 { du[a] } else { -du[a] });
         let weight = w[0] * w[1] * w[2] * w[3];
@@ -447,9 +452,7 @@ pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
 fn perlin4_stochastic_with(p: [f32; 4], seed: u32, xi: f32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
     let (lo, f) = split4(p, sp);
     let c = nested_corner(xi, f.map(fade));
-    let g = grad4(lo, c.masks(), seed);
-    let o = c.floats();
-    (g[0] * (f[0] - o[0]) + g[1] * (f[1] - o[1])) + (g[2] * (f[2] - o[2]) + g[3] * (f[3] - o[3]))
+    dot4(grad4(lo, c.masks(), seed), f, c.floats())
 }
 
 #[cfg(test)]
