@@ -270,23 +270,6 @@ fn nearest(x: f32) -> (i32, f32) {
     )
 }
 
-/// [`split_in_range`], the same cell and offset bit for bit, with the step for a negative
-/// offset made by bit operations and a subtraction instead of a mask of a compare. LLVM sees a
-/// select between 1.0 and 0.0 in the masked form, and on x86 it sometimes lowers that select to
-/// a branch, mispredicted on half of all random coordinates: it did so inside the 3D Perlin
-/// estimator (40 ns a call instead of 21), not inside the deterministic function, which is 3–4 %
-/// faster with the masked form. The estimators take this one.
-#[inline(always)]
-pub fn split_in_range_branchless(x: f32) -> (i32, f32) {
-    let (r, f) = nearest(x);
-    // The sign of `f`, with −0 counted as +0 (adding +0 turns −0 into +0 and leaves every other
-    // value alone): strictly negative offsets step down a cell.
-    let sign = (f + 0.0).to_bits() & 0x8000_0000;
-    // `½ − (±½)`: 1 for a negative offset, else 0.
-    let step = 0.5 - f32::from_bits(sign | 0x3f00_0000);
-    (r - (sign >> 31) as i32, f + step)
-}
-
 /// Whether every coordinate is finite and below 2^22 in magnitude (then [`split_in_range`]
 /// applies; larger coordinates take [`split`]).
 #[inline(always)]
@@ -352,8 +335,6 @@ mod tests {
         let check = |x: f32| {
             assert!(in_split_range([x]), "{x}");
             let (c, f) = split_in_range(x);
-            let (bc, bf) = split_in_range_branchless(x);
-            assert_eq!((c, f.to_bits()), (bc, bf.to_bits()), "branchless, x {x:e}");
             // Equal values (the truncating form keeps the sign of −0, `split` clears it).
             let (rc, rf) = split_by_truncation(x);
             assert!(
