@@ -322,13 +322,7 @@ mod tests {
     fn fresh_corner2_is_the_sequential_narrowing() {
         // Random weights and ξ, and every mix of the weights that are hard for the cuts (0, a
         // few ulps, ½, just below 1, 1, a few ulps past 1) with ξ at and near the ends.
-        let mut s = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / 16_777_216.0
-        };
+        let mut next = super::super::uniforms(0x2545_f491_4f6c_dd1du64);
         let hard = [
             0.0f32,
             1e-7,

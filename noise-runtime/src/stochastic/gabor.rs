@@ -352,17 +352,8 @@ fn estimate(
 
 #[cfg(test)]
 mod tests {
+    use super::super::uniforms;
     use super::*;
-
-    /// Uniform numbers in `[0, 1)` from a xorshift generator.
-    fn uniforms(mut s: u64) -> impl FnMut() -> f32 {
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / 16_777_216.0
-        }
-    }
 
     /// A point in the cube `[-32, 32)³`.
     fn point(next: &mut impl FnMut() -> f32) -> [f32; 3] {

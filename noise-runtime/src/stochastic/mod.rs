@@ -51,6 +51,17 @@ mod simplex;
 mod sparse;
 mod voronoi;
 
+/// Uniform numbers in `[0, 1)` from a xorshift generator, for the tests' random points and ξ.
+#[cfg(test)]
+pub(crate) fn uniforms(mut s: u64) -> impl FnMut() -> f32 {
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / 16_777_216.0
+    }
+}
+
 pub use estimators::{
     ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
 };

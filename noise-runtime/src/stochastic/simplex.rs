@@ -239,13 +239,7 @@ mod tests {
         // Equal as numbers (a gradient's unused axis adds a zero, which can turn a −0 into +0),
         // at random points and at points where offsets tie (the diagonal, the cell's faces),
         // where the rank order must pick the simplex the six cases pick.
-        let mut s = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / 16_777_216.0
-        };
+        let mut next = super::super::uniforms(0x9e37_79b9_7f4a_7c15u64);
         let xis = [0.0, 1e-7, 0.25, 0.5, 0.999_999, 1.0];
         for i in 0..30_000 {
             let p = if i < 20_000 {
