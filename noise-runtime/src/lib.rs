@@ -1,6 +1,8 @@
 //! # noise-runtime
 //!
-//! The part of noisebake a game links: `#![no_std]`, no dependencies, no `unsafe`.
+//! The part of noisebake a game links: `#![no_std]`, no dependencies, and no `unsafe` outside
+//! one private module that calls SSE2 intrinsics on x86_64 (the hot paths of 3D Perlin noise;
+//! same bits as the scalar code, which runs on every other target).
 //!
 //! - [`Mask2`], [`Mask3`], [`Mask4`]: typed, `const`-constructible views over baked bytes, read
 //!   toroidally with any integer coordinates; [`Mask3::get_k`] gives the k-th independent value
@@ -47,11 +49,14 @@
 //! assert!((mean - stochastic::perlin3(p, 7)).abs() < 0.002);
 //! ```
 #![no_std]
-#![forbid(unsafe_code)]
+#![deny(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod cnj;
 pub mod coord;
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[allow(unsafe_code)]
+mod lanes;
 pub mod ldg;
 pub mod mask;
 pub mod math;

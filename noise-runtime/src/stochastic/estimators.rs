@@ -78,8 +78,15 @@ impl Narrowing {
     /// One decision with weight `t ∈ [0, 1]`: all ones when the upper side was taken.
     #[inline(always)]
     pub(crate) fn upper(&mut self, t: f32) -> u32 {
+        self.upper_fixed(fixed(t))
+    }
+
+    /// [`Narrowing::upper`] with the weight already in fixed point (`fixed(t)`, as
+    /// [`lanes::fixed`](crate::lanes::fixed) makes it for four weights at once).
+    #[inline(always)]
+    pub(crate) fn upper_fixed(&mut self, t: u64) -> u32 {
         // Wrapping: for weights in [0, 1] nothing comes near 2^64; for others it must not panic.
-        let cut = self.l.wrapping_mul(fixed(t)) >> FIXED_BITS;
+        let cut = self.l.wrapping_mul(t) >> FIXED_BITS;
         // All ones when `r < cut` (both below 2^24, so the difference's sign says it). The sign
         // of a subtraction rather than a compare: LLVM turns selects on a compare into branches
         // on x86, mispredicted on half of all random ξ.

@@ -8,6 +8,9 @@ use super::estimators::{Narrowing, fresh_corner2, nested_corner, unit_corner};
 use super::hash::{CORNER_MUL, PRIME, corner};
 use crate::math::{dfade, fade, split};
 
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+mod sse;
+
 #[inline(always)]
 fn lerp(t: f32, a: f32, b: f32) -> f32 {
     a + t * (b - a)
@@ -187,7 +190,10 @@ fn perlin2_stochastic_with(p: [f32; 2], seed: u32, xi: f32, sp: impl Fn(f32) -> 
 pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
     // One predictable branch buys guard-free splits for every ordinary coordinate.
     if crate::math::in_split_range(p) {
-        perlin3_with(p, seed, crate::math::split_in_range)
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        return sse::perlin3_in_range(p, seed);
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+        return perlin3_with(p, seed, crate::math::split_in_range);
     } else {
         perlin3_with(p, seed, split)
     }
@@ -280,7 +286,10 @@ pub fn perlin3_grad_cell(cell: [i32; 3], f: [f32; 3], seed: u32) -> (f32, [f32; 
 #[inline(always)]
 pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     if crate::math::in_split_range(p) {
-        perlin3_stochastic_in_range(p, seed, xi)
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        return sse::perlin3_stochastic_in_range(p, seed, xi);
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+        return perlin3_stochastic_in_range(p, seed, xi);
     } else {
         perlin3_stochastic_with(p, seed, xi, split)
     }
@@ -294,6 +303,9 @@ pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
 /// one generic body), the two tails were merged and the packed multiply came back. In this
 /// four-lane form the masked split ([`split_in_range`](crate::math::split_in_range)) stays
 /// free of branches (LLVM vectorises its compare).
+// On x86_64 the lane form in `sse` runs instead; this one stays the code elsewhere and the
+// tests' reference there.
+#[cfg_attr(all(target_arch = "x86_64", target_feature = "sse2"), allow(dead_code))]
 #[inline(always)]
 fn perlin3_stochastic_in_range(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     let v = [p[0], p[1], p[2], 0.0];

@@ -1,0 +1,131 @@
+//! The 3D Perlin pair on SSE2 lanes ([`lanes`](crate::lanes)), for coordinates in the split
+//! range: the split and the fades of the three axes run in one register, and the
+//! deterministic form's eight dot products as two transposed groups of four. Bit for bit the
+//! scalar forms (`perlin3_with` and `perlin3_stochastic_in_range`), which remain the code on
+//! other targets; the tests compare the two.
+
+use super::{GRAD3, Narrowing, PRIME, unit_corner};
+use crate::lanes::{self, F4};
+use crate::stochastic::hash::CORNER_MUL;
+
+/// The gradient row of corner hash `h` (before its finishing multiply).
+#[inline(always)]
+fn grad(h: u32) -> F4 {
+    F4::new(&GRAD3.0[(h.wrapping_mul(CORNER_MUL) >> 28) as usize])
+}
+
+/// [`perlin3`](super::perlin3) for a point in the split range.
+#[inline(always)]
+pub(super) fn perlin3_in_range(p: [f32; 3], seed: u32) -> f32 {
+    let (cell, f) = lanes::split_in_range(F4::from3(p));
+    let t = lanes::fade(f);
+    let [cx, cy, cz] = cell.xyz();
+    let xp0 = cx.wrapping_mul(PRIME[0]);
+    let yp0 = cy.wrapping_mul(PRIME[1]);
+    let zp0 = cz.wrapping_mul(PRIME[2]);
+    let (xp1, yp1, zp1) = (
+        xp0.wrapping_add(PRIME[0]),
+        yp0.wrapping_add(PRIME[1]),
+        zp0.wrapping_add(PRIME[2]),
+    );
+    // The corners by (y, z): 00, 10, 01, 11; then once with x = 0 and once with x = 1.
+    let yz = [
+        seed ^ yp0 ^ zp0,
+        seed ^ yp1 ^ zp0,
+        seed ^ yp0 ^ zp1,
+        seed ^ yp1 ^ zp1,
+    ];
+    let dot = |h: u32, c: u32| grad(h) * (f - F4::new(&unit_corner(c)));
+    let lo = F4::sums3([
+        dot(yz[0] ^ xp0, 0),
+        dot(yz[1] ^ xp0, 2),
+        dot(yz[2] ^ xp0, 4),
+        dot(yz[3] ^ xp0, 6),
+    ]);
+    let hi = F4::sums3([
+        dot(yz[0] ^ xp1, 1),
+        dot(yz[1] ^ xp1, 3),
+        dot(yz[2] ^ xp1, 5),
+        dot(yz[3] ^ xp1, 7),
+    ]);
+    // The scalar form's nested lerps, x first: lanes (y, z) = 00, 10, 01, 11; then y: lanes
+    // z = 0, 1; then z.
+    let a = F4::lerp(t.xxxx(), lo, hi);
+    let b = F4::lerp(t.yyyy(), a.xzxz(), a.ywyw());
+    let (b0, b1, w) = (b.x(), b.y(), t.z());
+    b0 + w * (b1 - b0)
+}
+
+/// [`perlin3_stochastic`](super::perlin3_stochastic) for a point in the split range.
+#[inline(always)]
+pub(super) fn perlin3_stochastic_in_range(p: [f32; 3], seed: u32, xi: f32) -> f32 {
+    let (cell, f) = lanes::split_in_range(F4::from3(p));
+    let t = lanes::fixed(lanes::fade(f)).xyz();
+    let cell = cell.xyz();
+    let mut n = Narrowing::new(xi);
+    let mut h = seed;
+    let mut k = 0;
+    for a in 0..3 {
+        let up = n.upper_fixed(t[a] as u64);
+        h ^= cell[a].wrapping_mul(PRIME[a]).wrapping_add(up & PRIME[a]);
+        k |= (up & 1) << a;
+    }
+    (grad(h) * (f - F4::new(&unit_corner(k)))).sum3()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{perlin3_stochastic_in_range, perlin3_with};
+    use super::*;
+    use crate::math::split_in_range;
+    use crate::stochastic::estimators::ONE_BELOW;
+
+    /// Calls `check` at points that are hard for the split (integers, their neighbouring
+    /// floats, ±0, the smallest magnitudes, the edge of the split range), every triple of
+    /// them, and at random points.
+    fn points(mut check: impl FnMut(usize, [f32; 3])) {
+        let mut hard = [0.0f32; 34];
+        hard[..6].copy_from_slice(&[0.0, -0.0, 1e-45, -1e-45, 4_194_303.5, -4_194_303.5]);
+        for k in 0..7 {
+            let v = k as f32 - 3.0;
+            let up = f32::from_bits(v.abs().to_bits() + 1);
+            hard[6 + 4 * k..10 + 4 * k].copy_from_slice(&[v, up, -up, v + 0.5]);
+        }
+        let n = hard.len();
+        for i in 0..n * n * n {
+            check(i, [hard[i % n], hard[i / n % n], hard[i / n / n]]);
+        }
+        let mut next = crate::stochastic::uniforms(0x9e37_79b9_7f4a_7c15);
+        for i in 0..100_000 {
+            check(n * n * n + i, [0; 3].map(|_| (next() - 0.5) * 2e3));
+        }
+    }
+
+    #[test]
+    fn lane_forms_are_the_scalar_forms_bit_for_bit() {
+        let mut next = crate::stochastic::uniforms(0x2545_f491_4f6c_dd1d);
+        let odd_xi = [0.0, -0.0, ONE_BELOW, 1.0, 2.0, -1.0, f32::NAN, 1e-30];
+        points(|i, p| {
+            let seed = (i as u32).wrapping_mul(0x9e37_79b9);
+            let d = perlin3_in_range(p, seed);
+            let want = perlin3_with(p, seed, split_in_range);
+            assert_eq!(
+                d.to_bits(),
+                want.to_bits(),
+                "perlin3 at {p:?}: {d} vs {want}"
+            );
+            let xi = if i % 4 == 0 {
+                odd_xi[i / 4 % odd_xi.len()]
+            } else {
+                next()
+            };
+            let s = perlin3_stochastic_in_range(p, seed, xi);
+            let want = super::super::perlin3_stochastic_in_range(p, seed, xi);
+            assert_eq!(
+                s.to_bits(),
+                want.to_bits(),
+                "estimator at {p:?}, ξ {xi}: {s} vs {want}"
+            );
+        });
+    }
+}
