@@ -17,10 +17,11 @@
 //! so its instruction count is its speed.
 
 use core::arch::x86_64::{
-    __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_castps_si128, _mm_castsi128_ps,
-    _mm_cmpgt_epi32, _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_movehl_ps, _mm_movelh_ps, _mm_mul_ps,
-    _mm_set_ps, _mm_set1_epi32, _mm_set1_ps, _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps,
-    _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
+    __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_and_si128, _mm_castps_si128,
+    _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_movehl_ps,
+    _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_ps, _mm_set1_epi32, _mm_set1_ps,
+    _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps, _mm_sub_epi32, _mm_sub_ps,
+    _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
 };
 use core::ops::{Add, Mul, Sub};
 
@@ -165,6 +166,17 @@ impl I4 {
                 _mm_cvtsi128_si32(_mm_shuffle_epi32::<0xaa>(v)) as u32,
             ]
         }
+    }
+}
+
+/// [`in_split_range`](crate::math::in_split_range) of all four lanes: the same add per lane,
+/// and one sign mask instead of extracting the lanes.
+#[inline(always)]
+pub(crate) fn in_split_range(v: F4) -> bool {
+    unsafe {
+        let abs = _mm_and_si128(_mm_castps_si128(v.0), _mm_set1_epi32(0x7fff_ffff));
+        let t = _mm_add_epi32(abs, _mm_set1_epi32((0x8000_0000u32 - 0x4a80_0000) as i32));
+        _mm_movemask_ps(_mm_castsi128_ps(t)) == 0
     }
 }
 

@@ -189,14 +189,18 @@ fn perlin2_stochastic_with(p: [f32; 2], seed: u32, xi: f32, sp: impl Fn(f32) -> 
 #[inline(always)]
 pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
     // One predictable branch buys guard-free splits for every ordinary coordinate.
-    if crate::math::in_split_range(p) {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return sse::perlin3_in_range(p, seed);
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return perlin3_with(p, seed, crate::math::split_in_range);
-    } else {
-        perlin3_with(p, seed, split)
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        let v = crate::lanes::F4::from3(p);
+        if crate::lanes::in_split_range(v) {
+            return sse::perlin3_in_range(v, seed);
+        }
     }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    if crate::math::in_split_range(p) {
+        return perlin3_with(p, seed, crate::math::split_in_range);
+    }
+    perlin3_with(p, seed, split)
 }
 
 /// The hash products of a 3D cell's corners, per axis: `i·PRIME[a]` on the lower side and
@@ -285,14 +289,18 @@ pub fn perlin3_grad_cell(cell: [i32; 3], f: [f32; 3], seed: u32) -> (f32, [f32; 
 /// One-sample estimator of [`perlin3`] (Algorithm 1 in 3D): one gradient instead of eight.
 #[inline(always)]
 pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    if crate::math::in_split_range(p) {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return sse::perlin3_stochastic_in_range(p, seed, xi);
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return perlin3_stochastic_in_range(p, seed, xi);
-    } else {
-        perlin3_stochastic_with(p, seed, xi, split)
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        let v = crate::lanes::F4::from3(p);
+        if crate::lanes::in_split_range(v) {
+            return sse::perlin3_stochastic_in_range(v, seed, xi);
+        }
     }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    if crate::math::in_split_range(p) {
+        return perlin3_stochastic_in_range(p, seed, xi);
+    }
+    perlin3_stochastic_with(p, seed, xi, split)
 }
 
 /// [`perlin3_stochastic_with`] for coordinates in the split range, the same bits. The split

@@ -16,8 +16,8 @@ fn grad(h: u32) -> F4 {
 
 /// [`perlin3`](super::perlin3) for a point in the split range.
 #[inline(always)]
-pub(super) fn perlin3_in_range(p: [f32; 3], seed: u32) -> f32 {
-    let (cell, f) = lanes::split_in_range(F4::from3(p));
+pub(super) fn perlin3_in_range(v: F4, seed: u32) -> f32 {
+    let (cell, f) = lanes::split_in_range(v);
     let t = lanes::fade(f);
     let [cx, cy, cz] = cell.xyz();
     let xp0 = cx.wrapping_mul(PRIME[0]);
@@ -58,8 +58,8 @@ pub(super) fn perlin3_in_range(p: [f32; 3], seed: u32) -> f32 {
 
 /// [`perlin3_stochastic`](super::perlin3_stochastic) for a point in the split range.
 #[inline(always)]
-pub(super) fn perlin3_stochastic_in_range(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    let (cell, f) = lanes::split_in_range(F4::from3(p));
+pub(super) fn perlin3_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
+    let (cell, f) = lanes::split_in_range(v);
     let t = lanes::fixed(lanes::fade(f)).xyz();
     let cell = cell.xyz();
     let mut n = Narrowing::new(xi);
@@ -107,7 +107,7 @@ mod tests {
         let odd_xi = [0.0, -0.0, ONE_BELOW, 1.0, 2.0, -1.0, f32::NAN, 1e-30];
         points(|i, p| {
             let seed = (i as u32).wrapping_mul(0x9e37_79b9);
-            let d = perlin3_in_range(p, seed);
+            let d = perlin3_in_range(F4::from3(p), seed);
             let want = perlin3_with(p, seed, split_in_range);
             assert_eq!(
                 d.to_bits(),
@@ -119,7 +119,7 @@ mod tests {
             } else {
                 next()
             };
-            let s = perlin3_stochastic_in_range(p, seed, xi);
+            let s = perlin3_stochastic_in_range(F4::from3(p), seed, xi);
             let want = super::super::perlin3_stochastic_in_range(p, seed, xi);
             assert_eq!(
                 s.to_bits(),
