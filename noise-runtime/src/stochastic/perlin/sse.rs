@@ -75,7 +75,7 @@ pub(super) fn perlin3_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{perlin3_stochastic_in_range, perlin3_with};
+    use super::super::perlin3_with;
     use super::*;
     use crate::math::split_in_range;
     use crate::stochastic::estimators::ONE_BELOW;
@@ -119,7 +119,7 @@ mod tests {
             } else {
                 next()
             };
-            let s = perlin3_stochastic_in_range(F4::from3(p), seed, xi);
+            let s = super::perlin3_stochastic_in_range(F4::from3(p), seed, xi);
             let want = super::super::perlin3_stochastic_in_range(p, seed, xi);
             assert_eq!(
                 s.to_bits(),
