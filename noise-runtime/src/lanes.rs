@@ -17,10 +17,10 @@
 //! so its instruction count is its speed.
 
 use core::arch::x86_64::{
-    __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_and_ps, _mm_and_si128, _mm_castps_si128,
-    _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_movehl_ps,
-    _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_ps, _mm_set1_epi32, _mm_set1_ps,
-    _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps, _mm_sub_epi32, _mm_sub_ps,
+    __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_add_ss, _mm_and_ps, _mm_and_si128,
+    _mm_castps_si128, _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cvtsi128_si32, _mm_cvtss_f32,
+    _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_ps, _mm_set1_epi32,
+    _mm_set1_ps, _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps, _mm_sub_epi32, _mm_sub_ps,
     _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
 };
 use core::ops::{Add, Mul, Sub};
@@ -40,6 +40,12 @@ impl F4 {
         // SAFETY (here and in every block below): the call's only precondition is the
         // target feature, enabled at compile time (see the module doc).
         F4(unsafe { _mm_set_ps(r[3], r[2], r[1], r[0]) })
+    }
+
+    /// The lanes of a point.
+    #[inline(always)]
+    pub(crate) fn from4(p: [f32; 4]) -> F4 {
+        F4(unsafe { _mm_set_ps(p[3], p[2], p[1], p[0]) })
     }
 
     /// `[x, y, z, 0]`.
@@ -106,6 +112,61 @@ impl F4 {
         }
     }
 
+    /// `(x + y) + (z + w)`, the order of the 4D dot product (`dot4`).
+    #[inline(always)]
+    pub(crate) fn sum4(self) -> f32 {
+        let v = self.0;
+        unsafe {
+            // Lane 0: x + y; lane 1: z + w (of the pairs (x, z) and (y, w)).
+            let s = _mm_add_ps(
+                _mm_shuffle_ps::<0b10_00_10_00>(v, v),
+                _mm_shuffle_ps::<0b11_01_11_01>(v, v),
+            );
+            _mm_cvtss_f32(_mm_add_ss(s, _mm_shuffle_ps::<0x55>(s, s)))
+        }
+    }
+
+    /// `[r0.sum4(), r1.sum4(), r2.sum4(), r3.sum4()]`, by a transpose.
+    #[inline(always)]
+    pub(crate) fn sums4(r: [F4; 4]) -> F4 {
+        let [r0, r1, r2, r3] = r.map(|v| v.0);
+        unsafe {
+            let lo01 = _mm_unpacklo_ps(r0, r1);
+            let lo23 = _mm_unpacklo_ps(r2, r3);
+            let hi01 = _mm_unpackhi_ps(r0, r1);
+            let hi23 = _mm_unpackhi_ps(r2, r3);
+            let x = _mm_movelh_ps(lo01, lo23);
+            let y = _mm_movehl_ps(lo23, lo01);
+            let z = _mm_movelh_ps(hi01, hi23);
+            let w = _mm_movehl_ps(hi23, hi01);
+            F4(_mm_add_ps(_mm_add_ps(x, y), _mm_add_ps(z, w)))
+        }
+    }
+
+    /// Lanes 0 and 2 of `a`, then lanes 0 and 2 of `b`.
+    #[inline(always)]
+    pub(crate) fn evens(a: F4, b: F4) -> F4 {
+        F4(unsafe { _mm_shuffle_ps::<0b10_00_10_00>(a.0, b.0) })
+    }
+
+    /// Lanes 1 and 3 of `a`, then lanes 1 and 3 of `b`.
+    #[inline(always)]
+    pub(crate) fn odds(a: F4, b: F4) -> F4 {
+        F4(unsafe { _mm_shuffle_ps::<0b11_01_11_01>(a.0, b.0) })
+    }
+
+    /// Lane 2 in every lane.
+    #[inline(always)]
+    pub(crate) fn zzzz(self) -> F4 {
+        F4(unsafe { _mm_shuffle_ps::<0xaa>(self.0, self.0) })
+    }
+
+    /// Lane 3.
+    #[inline(always)]
+    pub(crate) fn w(self) -> f32 {
+        unsafe { _mm_cvtss_f32(_mm_shuffle_ps::<0xff>(self.0, self.0)) }
+    }
+
     /// `[r0.sum3(), r1.sum3(), r2.sum3(), r3.sum3()]`, by a transpose: four dot products'
     /// sums in two adds.
     #[inline(always)]
@@ -155,6 +216,20 @@ impl Mul for F4 {
 }
 
 impl I4 {
+    /// The four lanes as `u32`.
+    #[inline(always)]
+    pub(crate) fn xyzw(self) -> [u32; 4] {
+        let v = self.0;
+        unsafe {
+            [
+                _mm_cvtsi128_si32(v) as u32,
+                _mm_cvtsi128_si32(_mm_shuffle_epi32::<0x55>(v)) as u32,
+                _mm_cvtsi128_si32(_mm_shuffle_epi32::<0xaa>(v)) as u32,
+                _mm_cvtsi128_si32(_mm_shuffle_epi32::<0xff>(v)) as u32,
+            ]
+        }
+    }
+
     /// Lanes 0, 1 and 2 as `u32`.
     #[inline(always)]
     pub(crate) fn xyz(self) -> [u32; 3] {

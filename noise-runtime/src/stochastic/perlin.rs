@@ -51,8 +51,11 @@ static GRAD3: Grad3 = Grad3([
     [0.0, -1.0, -1.0, 0.0],
 ]);
 
-/// The 32 edge gradients of the tesseract: one axis zero, the other three ±1.
-const GRAD4: [[f32; 4]; 32] = {
+/// The 32 edge gradients of the tesseract: one axis zero, the other three ±1. Aligned rows,
+/// as [`GRAD3`].
+#[repr(align(16))]
+struct Grad4([[f32; 4]; 32]);
+static GRAD4: Grad4 = Grad4({
     let mut g = [[0.0f32; 4]; 32];
     let mut i = 0;
     while i < 32 {
@@ -69,7 +72,7 @@ const GRAD4: [[f32; 4]; 32] = {
         i += 1;
     }
     g
-};
+});
 
 #[inline(always)]
 fn g2(h: u32) -> [f32; 2] {
@@ -81,7 +84,7 @@ fn g3(h: u32) -> [f32; 4] {
 }
 #[inline(always)]
 fn g4(h: u32) -> [f32; 4] {
-    GRAD4[(h >> 27) as usize]
+    GRAD4.0[(h >> 27) as usize]
 }
 
 /// 2D Perlin noise, about `[-1, 1]`.
@@ -406,11 +409,18 @@ fn corner_masks(c: usize) -> [u32; 4] {
 /// 4D Perlin noise (e.g. 3D noise animated over time).
 #[inline]
 pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
-    if crate::math::in_split_range(p) {
-        perlin4_with(p, seed, crate::math::split_in_range)
-    } else {
-        perlin4_with(p, seed, split)
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        let v = crate::lanes::F4::from4(p);
+        if crate::lanes::in_split_range(v) {
+            return sse::perlin4_in_range(v, seed);
+        }
     }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    if crate::math::in_split_range(p) {
+        return perlin4_with(p, seed, crate::math::split_in_range);
+    }
+    perlin4_with(p, seed, split)
 }
 
 #[inline(always)]
@@ -464,11 +474,18 @@ pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 /// One-sample estimator of [`perlin4`]: one gradient instead of sixteen.
 #[inline]
 pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    if crate::math::in_split_range(p) {
-        perlin4_stochastic_with(p, seed, xi, crate::math::split_in_range)
-    } else {
-        perlin4_stochastic_with(p, seed, xi, split)
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        let v = crate::lanes::F4::from4(p);
+        if crate::lanes::in_split_range(v) {
+            return sse::perlin4_stochastic_in_range(v, seed, xi);
+        }
     }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    if crate::math::in_split_range(p) {
+        return perlin4_stochastic_with(p, seed, xi, crate::math::split_in_range);
+    }
+    perlin4_stochastic_with(p, seed, xi, split)
 }
 
 #[inline(always)]
@@ -487,7 +504,7 @@ mod tests {
     fn index4(c: [i32; 4], seed: u32) -> usize {
         let (lo, _) = split4(c.map(|v| v as f32 + 0.5), split);
         let g = grad4(lo, [0; 4], seed);
-        GRAD4.iter().position(|&r| r == g).unwrap()
+        GRAD4.0.iter().position(|&r| r == g).unwrap()
     }
 
     /// The gradient row the lower corner of the 3D cell `c` gets in [`perlin3`] (the top four

@@ -1,10 +1,11 @@
-//! The 3D Perlin pair on SSE2 lanes ([`lanes`](crate::lanes)), for coordinates in the split
-//! range: the split and the fades of the three axes run in one register, and the
-//! deterministic form's eight dot products as two transposed groups of four. Bit for bit the
-//! scalar forms (`perlin3_with` and `perlin3_stochastic_in_range`), which remain the code on
-//! other targets; the tests compare the two.
+//! The 3D and 4D Perlin pairs on SSE2 lanes ([`lanes`](crate::lanes)), for coordinates in the
+//! split range: the split and the fades of all axes run in one register, and the
+//! deterministic forms' dot products as transposed groups of four. Bit for bit the scalar
+//! forms (`perlin3_with`, `perlin3_stochastic_in_range`, `perlin4_with`,
+//! `perlin4_stochastic_with`), which remain the code on other targets; the tests compare the
+//! two.
 
-use super::{GRAD3, Narrowing, PRIME, unit_corner};
+use super::{GRAD3, GRAD4, Narrowing, PRIME, unit_corner};
 use crate::lanes::{self, F4};
 use crate::stochastic::hash::CORNER_MUL;
 
@@ -73,6 +74,63 @@ pub(super) fn perlin3_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
     (grad(h) * (f - F4::new(&unit_corner(k)))).sum3()
 }
 
+/// The gradient row of 4D corner hash `h` (before its finishing multiply).
+#[inline(always)]
+fn grad4(h: u32) -> F4 {
+    F4::new(&GRAD4.0[(h.wrapping_mul(CORNER_MUL) >> 27) as usize])
+}
+
+/// [`perlin4`](super::perlin4) for a point in the split range.
+#[inline(always)]
+pub(super) fn perlin4_in_range(v: F4, seed: u32) -> f32 {
+    let (cell, f) = lanes::split_in_range(v);
+    let t = lanes::fade(f);
+    let c = cell.xyzw();
+    let lo: [u32; 4] = core::array::from_fn(|a| c[a].wrapping_mul(PRIME[a]));
+    let side = |a: usize, up: usize| lo[a].wrapping_add(PRIME[a] & 0u32.wrapping_sub(up as u32));
+    // Corner `c` has bit `a` set on the upper side of axis `a`; its hash is the xor of its
+    // sides' products, built from the (z, w) pairs out.
+    let zw: [u32; 4] = core::array::from_fn(|i| seed ^ side(2, i & 1) ^ side(3, i >> 1));
+    let dot = |c: usize| {
+        let h = zw[c >> 2] ^ side(1, (c >> 1) & 1) ^ side(0, c & 1);
+        grad4(h) * (f - F4::new(&unit_corner(c as u32)))
+    };
+    // The scalar form's nested lerps, x first: corners with x = 0 and x = 1 for (y, z) = 00,
+    // 10, 01, 11, at w = 0 and at w = 1.
+    let x0 = F4::lerp(
+        t.xxxx(),
+        F4::sums4([dot(0), dot(2), dot(4), dot(6)]),
+        F4::sums4([dot(1), dot(3), dot(5), dot(7)]),
+    );
+    let x1 = F4::lerp(
+        t.xxxx(),
+        F4::sums4([dot(8), dot(10), dot(12), dot(14)]),
+        F4::sums4([dot(9), dot(11), dot(13), dot(15)]),
+    );
+    // Then y (lanes (z, w) = 00, 10, 01, 11), then z (lanes w = 0, 1), then w.
+    let y = F4::lerp(t.yyyy(), F4::evens(x0, x1), F4::odds(x0, x1));
+    let z = F4::lerp(t.zzzz(), F4::evens(y, y), F4::odds(y, y));
+    let (z0, z1) = (z.x(), z.y());
+    z0 + t.w() * (z1 - z0)
+}
+
+/// [`perlin4_stochastic`](super::perlin4_stochastic) for a point in the split range.
+#[inline(always)]
+pub(super) fn perlin4_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
+    let (cell, f) = lanes::split_in_range(v);
+    let t = lanes::fixed(lanes::fade(f)).xyzw();
+    let cell = cell.xyzw();
+    let mut n = Narrowing::new(xi);
+    let mut h = seed;
+    let mut k = 0;
+    for a in 0..4 {
+        let up = n.upper_fixed(t[a] as u64);
+        h ^= cell[a].wrapping_mul(PRIME[a]).wrapping_add(up & PRIME[a]);
+        k |= (up & 1) << a;
+    }
+    (grad4(h) * (f - F4::new(&unit_corner(k)))).sum4()
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::perlin3_with;
@@ -99,6 +157,38 @@ mod tests {
         for i in 0..100_000 {
             check(n * n * n + i, [0; 3].map(|_| (next() - 0.5) * 2e3));
         }
+    }
+
+    #[test]
+    fn lane_forms_4d_are_the_scalar_forms_bit_for_bit() {
+        let mut next = crate::stochastic::uniforms(0x853c_49e6_748f_ea9b);
+        let odd_xi = [0.0, -0.0, ONE_BELOW, 1.0, 2.0, -1.0, f32::NAN, 1e-30];
+        // The 3D points with w from a fourth coordinate that walks the same hard values.
+        let mut w = 0.0f32;
+        points(|i, p| {
+            let p = [p[0], p[1], p[2], w];
+            w = if i % 7 == 0 { -p[0] } else { p[1] + p[2] };
+            let seed = (i as u32).wrapping_mul(0x9e37_79b9);
+            let d = perlin4_in_range(F4::from4(p), seed);
+            let want = super::super::perlin4_with(p, seed, split_in_range);
+            assert_eq!(
+                d.to_bits(),
+                want.to_bits(),
+                "perlin4 at {p:?}: {d} vs {want}"
+            );
+            let xi = if i % 4 == 0 {
+                odd_xi[i / 4 % odd_xi.len()]
+            } else {
+                next()
+            };
+            let s = perlin4_stochastic_in_range(F4::from4(p), seed, xi);
+            let want = super::super::perlin4_stochastic_with(p, seed, xi, split_in_range);
+            assert_eq!(
+                s.to_bits(),
+                want.to_bits(),
+                "estimator at {p:?}, ξ {xi}: {s} vs {want}"
+            );
+        });
     }
 
     #[test]
