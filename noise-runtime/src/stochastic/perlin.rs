@@ -407,7 +407,7 @@ fn corner_masks(c: usize) -> [u32; 4] {
 }
 
 /// 4D Perlin noise (e.g. 3D noise animated over time).
-#[inline]
+#[inline(always)]
 pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
     {
@@ -472,7 +472,7 @@ pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 }
 
 /// One-sample estimator of [`perlin4`]: one gradient instead of sixteen.
-#[inline]
+#[inline(always)]
 pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
     {
