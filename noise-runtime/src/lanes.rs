@@ -18,10 +18,10 @@
 
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_add_ss, _mm_and_ps, _mm_and_si128,
-    _mm_castps_si128, _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cvtsi128_si32, _mm_cvtss_f32,
-    _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_ps, _mm_set1_epi32,
-    _mm_set1_ps, _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps, _mm_sub_epi32, _mm_sub_ps,
-    _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
+    _mm_castps_si128, _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cvtepi32_ps, _mm_cvtsi32_si128,
+    _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps,
+    _mm_set_ps, _mm_set1_epi32, _mm_set1_ps, _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps,
+    _mm_sra_epi32, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
 };
 use core::ops::{Add, Mul, Sub};
 
@@ -216,6 +216,25 @@ impl Mul for F4 {
 }
 
 impl I4 {
+    /// Each lane shifted right by `s < 32`, arithmetically: `⌊c / 2^s⌋`.
+    #[inline(always)]
+    pub(crate) fn floor_div_pow2(self, s: u32) -> I4 {
+        I4(unsafe { _mm_sra_epi32(self.0, _mm_cvtsi32_si128(s as i32)) })
+    }
+
+    /// Each lane's low `s < 32` bits: `c mod 2^s`, in `[0, 2^s)`.
+    #[inline(always)]
+    pub(crate) fn mod_pow2(self, s: u32) -> I4 {
+        let mask = (1u32 << s).wrapping_sub(1) as i32;
+        I4(unsafe { _mm_and_si128(self.0, _mm_set1_epi32(mask)) })
+    }
+
+    /// Each lane as `f32` (exact below 2^24).
+    #[inline(always)]
+    pub(crate) fn to_f32(self) -> F4 {
+        F4(unsafe { _mm_cvtepi32_ps(self.0) })
+    }
+
     /// The four lanes as `u32`.
     #[inline(always)]
     pub(crate) fn xyzw(self) -> [u32; 4] {

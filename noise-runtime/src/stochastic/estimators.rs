@@ -75,6 +75,19 @@ impl Narrowing {
         }
     }
 
+    /// [`Narrowing::new`] for a ξ known to lie in `[0, 1)` (a remapped one), the same state
+    /// without the sanitising steps, which would change nothing.
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[inline(always)]
+    pub(crate) fn new_unit(xi: f32) -> Self {
+        const ONE: u64 = 1 << FIXED_BITS;
+        debug_assert!((0.0..1.0).contains(&xi) && xi.to_bits() >> 31 == 0);
+        Narrowing {
+            r: fixed(xi).min(ONE - 1),
+            l: ONE,
+        }
+    }
+
     /// One decision with weight `t ∈ [0, 1]`: all ones when the upper side was taken.
     #[inline(always)]
     pub(crate) fn upper(&mut self, t: f32) -> u32 {

@@ -9,7 +9,7 @@ use super::hash::{CORNER_MUL, PRIME, corner};
 use crate::math::{dfade, fade, split};
 
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-mod sse;
+pub(super) mod sse;
 
 #[inline(always)]
 fn lerp(t: f32, a: f32, b: f32) -> f32 {

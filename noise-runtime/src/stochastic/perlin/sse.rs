@@ -6,7 +6,7 @@
 //! two.
 
 use super::{GRAD3, GRAD4, Narrowing, PRIME, unit_corner};
-use crate::lanes::{self, F4};
+use crate::lanes::{self, F4, I4};
 use crate::stochastic::hash::CORNER_MUL;
 
 /// The gradient row of corner hash `h` (before its finishing multiply).
@@ -61,9 +61,16 @@ pub(super) fn perlin3_in_range(v: F4, seed: u32) -> f32 {
 #[inline(always)]
 pub(super) fn perlin3_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
     let (cell, f) = lanes::split_in_range(v);
+    perlin3_stochastic_cell(cell, f, seed, Narrowing::new(xi))
+}
+
+/// The estimator at offset `f` in cell `cell` (lanes 0–2), with ξ already in its
+/// [`Narrowing`]: for callers that find the cell another way (the fBm estimator splits once at
+/// its finest octave).
+#[inline(always)]
+pub(crate) fn perlin3_stochastic_cell(cell: I4, f: F4, seed: u32, mut n: Narrowing) -> f32 {
     let t = lanes::fixed(lanes::fade(f)).xyz();
     let cell = cell.xyz();
-    let mut n = Narrowing::new(xi);
     let mut h = seed;
     let mut k = 0;
     for a in 0..3 {
