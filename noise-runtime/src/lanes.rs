@@ -19,9 +19,10 @@
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_add_ss, _mm_and_ps, _mm_and_si128,
     _mm_castps_si128, _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cvtepi32_ps, _mm_cvtsi32_si128,
-    _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps,
-    _mm_set_ps, _mm_set1_epi32, _mm_set1_ps, _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps,
-    _mm_sra_epi32, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
+    _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_max_ps, _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps,
+    _mm_mul_ps, _mm_set_ps, _mm_set1_epi32, _mm_set1_ps, _mm_setzero_si128, _mm_shuffle_epi32,
+    _mm_shuffle_ps, _mm_sra_epi32, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps,
+    _mm_xor_si128,
 };
 use core::ops::{Add, Mul, Sub};
 
@@ -76,6 +77,13 @@ impl F4 {
     #[inline(always)]
     pub(crate) fn z(self) -> f32 {
         unsafe { _mm_cvtss_f32(_mm_shuffle_ps::<0xaa>(self.0, self.0)) }
+    }
+
+    /// `max(self, o)` per lane (`o` where either is NaN, as `f32::max(self, o)` for a
+    /// non-NaN `o`).
+    #[inline(always)]
+    pub(crate) fn max(self, o: F4) -> F4 {
+        F4(unsafe { _mm_max_ps(self.0, o.0) })
     }
 
     /// Lane 0 in every lane.

@@ -1,8 +1,8 @@
 //! # noise-runtime
 //!
 //! The part of noisebake a game links: `#![no_std]`, no dependencies, and no `unsafe` outside
-//! one private module that calls SSE2 intrinsics on x86_64 (the hot paths of 3D Perlin noise;
-//! same bits as the scalar code, which runs on every other target).
+//! one private module that calls SSE2 intrinsics on x86_64 (the hot paths of 3D and 4D Perlin,
+//! simplex and fBm noise; the same bits as the scalar code, which runs on every other target).
 //!
 //! - [`Mask2`], [`Mask3`], [`Mask4`]: typed, `const`-constructible views over baked bytes, read
 //!   toroidally with any integer coordinates; [`Mask3::get_k`] gives the k-th independent value

@@ -12,6 +12,9 @@ use super::estimators::sanitize_xi;
 use super::hash::hash3;
 use crate::math::split;
 
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+mod sse;
+
 const G3: f32 = 1.0 / 6.0;
 const SCALE: f32 = 32.0;
 
@@ -122,6 +125,17 @@ fn grad_dot(c: [i32; 3], d: [f32; 3], seed: u32) -> f32 {
 /// 3D simplex noise, about `[-1, 1]`.
 #[inline(always)]
 pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    if let Some(v) = sse::simplex3(p, seed) {
+        return v;
+    }
+    simplex3_scalar(p, seed)
+}
+
+/// [`simplex3`] in scalar code: the form off x86_64, and for skewed points out of the split
+/// range there.
+#[inline(always)]
+fn simplex3_scalar(p: [f32; 3], seed: u32) -> f32 {
     let (c, d) = corners(p);
     let mut n = 0.0;
     for k in 0..4 {
@@ -138,6 +152,16 @@ pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
 /// one octave instead of all of them is the saving.
 #[inline(always)]
 pub fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    if let Some(v) = sse::simplex3_stochastic(p, seed, xi) {
+        return v;
+    }
+    simplex3_stochastic_scalar(p, seed, xi)
+}
+
+/// [`simplex3_stochastic`] in scalar code (see [`simplex3_scalar`]).
+#[inline(always)]
+fn simplex3_stochastic_scalar(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     let (c, d) = corners(p);
     let w = [weight(d[0]), weight(d[1]), weight(d[2]), weight(d[3])];
     // The weights laid end to end; the corner is the number of their ends at or below
