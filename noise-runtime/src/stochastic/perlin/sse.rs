@@ -1,7 +1,7 @@
-//! The 3D and 4D Perlin pairs on SSE2 lanes ([`lanes`](crate::lanes)), for coordinates in the
-//! split range: the split and the fades of all axes run in one register, and the
+//! The 3D and 4D Perlin pairs on SSE2 lanes (the [`crate::lanes`] module), for coordinates
+//! in the split range: the split and the fades of all axes run in one register, and the
 //! deterministic forms' dot products as transposed groups of four. Bit for bit the scalar
-//! forms (`perlin3_with`, `perlin3_stochastic_in_range`, `perlin4_with`,
+//! forms (`perlin3_with`, `perlin3_stochastic_with`, `perlin4_with`,
 //! `perlin4_stochastic_with`), which remain the code on other targets; the tests compare the
 //! two.
 

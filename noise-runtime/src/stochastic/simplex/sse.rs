@@ -1,5 +1,5 @@
 //! [`simplex3`](super::simplex3) and its estimator on SSE2 lanes
-//! ([`lanes`](crate::lanes)), for skewed points in the split range: the split as one
+//! (the [`crate::lanes`] module), for skewed points in the split range: the split as one
 //! register, the four corners' squared distances, weights and gradient dot products each as
 //! one register (by transposes). Bit for bit the scalar forms, which remain the code on other
 //! targets; the tests compare the two.
