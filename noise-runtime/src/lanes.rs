@@ -26,6 +26,28 @@ use core::arch::x86_64::{
 };
 use core::ops::{Add, Mul, Sub};
 
+/// Methods `fn name(self) -> f32` returning the lane a shuffle immediate selects.
+macro_rules! lane_getters {
+    ($($(#[$doc:meta])* $name:ident = $imm:literal;)*) => {$(
+        $(#[$doc])*
+        #[inline(always)]
+        pub(crate) fn $name(self) -> f32 {
+            unsafe { _mm_cvtss_f32(_mm_shuffle_ps::<$imm>(self.0, self.0)) }
+        }
+    )*};
+}
+
+/// Methods `fn name(self) -> F4` rearranging the lanes by a shuffle immediate.
+macro_rules! swizzles {
+    ($($(#[$doc:meta])* $name:ident = $imm:literal;)*) => {$(
+        $(#[$doc])*
+        #[inline(always)]
+        pub(crate) fn $name(self) -> F4 {
+            F4(unsafe { _mm_shuffle_ps::<$imm>(self.0, self.0) })
+        }
+    )*};
+}
+
 /// Four `f32` lanes.
 #[derive(Clone, Copy)]
 pub(crate) struct F4(__m128);
@@ -61,22 +83,28 @@ impl F4 {
         F4(unsafe { _mm_set1_ps(v) })
     }
 
-    /// Lane 0.
-    #[inline(always)]
-    pub(crate) fn x(self) -> f32 {
-        unsafe { _mm_cvtss_f32(self.0) }
+    lane_getters! {
+        /// Lane 0.
+        x = 0x00;
+        /// Lane 1.
+        y = 0x55;
+        /// Lane 2.
+        z = 0xaa;
+        /// Lane 3.
+        w = 0xff;
     }
 
-    /// Lane 1.
-    #[inline(always)]
-    pub(crate) fn y(self) -> f32 {
-        unsafe { _mm_cvtss_f32(_mm_shuffle_ps::<0x55>(self.0, self.0)) }
-    }
-
-    /// Lane 2.
-    #[inline(always)]
-    pub(crate) fn z(self) -> f32 {
-        unsafe { _mm_cvtss_f32(_mm_shuffle_ps::<0xaa>(self.0, self.0)) }
+    swizzles! {
+        /// Lane 0 in every lane.
+        xxxx = 0x00;
+        /// Lane 1 in every lane.
+        yyyy = 0x55;
+        /// Lane 2 in every lane.
+        zzzz = 0xaa;
+        /// Lanes 0 and 2 (twice).
+        xzxz = 0b10_00_10_00;
+        /// Lanes 1 and 3 (twice).
+        ywyw = 0b11_01_11_01;
     }
 
     /// `max(self, o)` per lane (`o` where either is NaN, as `f32::max(self, o)` for a
@@ -84,30 +112,6 @@ impl F4 {
     #[inline(always)]
     pub(crate) fn max(self, o: F4) -> F4 {
         F4(unsafe { _mm_max_ps(self.0, o.0) })
-    }
-
-    /// Lane 0 in every lane.
-    #[inline(always)]
-    pub(crate) fn xxxx(self) -> F4 {
-        F4(unsafe { _mm_shuffle_ps::<0x00>(self.0, self.0) })
-    }
-
-    /// Lane 1 in every lane.
-    #[inline(always)]
-    pub(crate) fn yyyy(self) -> F4 {
-        F4(unsafe { _mm_shuffle_ps::<0x55>(self.0, self.0) })
-    }
-
-    /// Lanes 0 and 2 (twice).
-    #[inline(always)]
-    pub(crate) fn xzxz(self) -> F4 {
-        F4(unsafe { _mm_shuffle_ps::<0b10_00_10_00>(self.0, self.0) })
-    }
-
-    /// Lanes 1 and 3 (twice).
-    #[inline(always)]
-    pub(crate) fn ywyw(self) -> F4 {
-        F4(unsafe { _mm_shuffle_ps::<0b11_01_11_01>(self.0, self.0) })
     }
 
     /// `(x + y) + z`, the order of a scalar three-term dot product.
@@ -137,18 +141,8 @@ impl F4 {
     /// `[r0.sum4(), r1.sum4(), r2.sum4(), r3.sum4()]`, by a transpose.
     #[inline(always)]
     pub(crate) fn sums4(r: [F4; 4]) -> F4 {
-        let [r0, r1, r2, r3] = r.map(|v| v.0);
-        unsafe {
-            let lo01 = _mm_unpacklo_ps(r0, r1);
-            let lo23 = _mm_unpacklo_ps(r2, r3);
-            let hi01 = _mm_unpackhi_ps(r0, r1);
-            let hi23 = _mm_unpackhi_ps(r2, r3);
-            let x = _mm_movelh_ps(lo01, lo23);
-            let y = _mm_movehl_ps(lo23, lo01);
-            let z = _mm_movelh_ps(hi01, hi23);
-            let w = _mm_movehl_ps(hi23, hi01);
-            F4(_mm_add_ps(_mm_add_ps(x, y), _mm_add_ps(z, w)))
-        }
+        let [x, y, z, w] = F4::transpose(r);
+        (x + y) + (z + w)
     }
 
     /// Lanes 0 and 2 of `a`, then lanes 0 and 2 of `b`.
@@ -163,32 +157,29 @@ impl F4 {
         F4(unsafe { _mm_shuffle_ps::<0b11_01_11_01>(a.0, b.0) })
     }
 
-    /// Lane 2 in every lane.
-    #[inline(always)]
-    pub(crate) fn zzzz(self) -> F4 {
-        F4(unsafe { _mm_shuffle_ps::<0xaa>(self.0, self.0) })
-    }
-
-    /// Lane 3.
-    #[inline(always)]
-    pub(crate) fn w(self) -> f32 {
-        unsafe { _mm_cvtss_f32(_mm_shuffle_ps::<0xff>(self.0, self.0)) }
-    }
-
     /// `[r0.sum3(), r1.sum3(), r2.sum3(), r3.sum3()]`, by a transpose: four dot products'
     /// sums in two adds.
     #[inline(always)]
     pub(crate) fn sums3(r: [F4; 4]) -> F4 {
+        let [x, y, z, _] = F4::transpose(r);
+        (x + y) + z
+    }
+
+    /// The columns of the rows `r`: lane `a` of every row, for `a` = 0…3.
+    #[inline(always)]
+    fn transpose(r: [F4; 4]) -> [F4; 4] {
         let [r0, r1, r2, r3] = r.map(|v| v.0);
         unsafe {
             let lo01 = _mm_unpacklo_ps(r0, r1);
             let lo23 = _mm_unpacklo_ps(r2, r3);
             let hi01 = _mm_unpackhi_ps(r0, r1);
             let hi23 = _mm_unpackhi_ps(r2, r3);
-            let x = _mm_movelh_ps(lo01, lo23);
-            let y = _mm_movehl_ps(lo23, lo01);
-            let z = _mm_movelh_ps(hi01, hi23);
-            F4(_mm_add_ps(_mm_add_ps(x, y), z))
+            [
+                F4(_mm_movelh_ps(lo01, lo23)),
+                F4(_mm_movehl_ps(lo23, lo01)),
+                F4(_mm_movelh_ps(hi01, hi23)),
+                F4(_mm_movehl_ps(hi23, hi01)),
+            ]
         }
     }
 
@@ -260,14 +251,8 @@ impl I4 {
     /// Lanes 0, 1 and 2 as `u32`.
     #[inline(always)]
     pub(crate) fn xyz(self) -> [u32; 3] {
-        let v = self.0;
-        unsafe {
-            [
-                _mm_cvtsi128_si32(v) as u32,
-                _mm_cvtsi128_si32(_mm_shuffle_epi32::<0x55>(v)) as u32,
-                _mm_cvtsi128_si32(_mm_shuffle_epi32::<0xaa>(v)) as u32,
-            ]
-        }
+        let [x, y, z, _] = self.xyzw();
+        [x, y, z]
     }
 }
 

@@ -9,6 +9,28 @@ use super::{GRAD3, GRAD4, Narrowing, PRIME, unit_corner};
 use crate::lanes::{self, F4, I4};
 use crate::stochastic::hash::CORNER_MUL;
 
+/// The corner of a `D`-dimensional cell that the narrowing `n` picks for the fixed-point
+/// weights `t`, hashed axis by axis as it is picked: each axis adds its lower side's product
+/// and, on the upper side, the axis prime under the decision's mask (an add, no multiply and
+/// no select after the decision). Returns the corner's hash (before its finishing multiply)
+/// and its number `k` (bit `a` set on the upper side of axis `a`).
+#[inline(always)]
+fn pick_corner<const D: usize>(
+    cell: [u32; D],
+    t: [u32; D],
+    seed: u32,
+    mut n: Narrowing,
+) -> (u32, u32) {
+    let mut h = seed;
+    let mut k = 0;
+    for a in 0..D {
+        let up = n.upper_fixed(t[a] as u64);
+        h ^= cell[a].wrapping_mul(PRIME[a]).wrapping_add(up & PRIME[a]);
+        k |= (up & 1) << a;
+    }
+    (h, k)
+}
+
 /// The gradient row of corner hash `h` (before its finishing multiply).
 #[inline(always)]
 fn grad(h: u32) -> F4 {
@@ -68,16 +90,9 @@ pub(super) fn perlin3_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
 /// [`Narrowing`]: for callers that find the cell another way (the fBm estimator splits once at
 /// its finest octave).
 #[inline(always)]
-pub(crate) fn perlin3_stochastic_cell(cell: I4, f: F4, seed: u32, mut n: Narrowing) -> f32 {
+pub(crate) fn perlin3_stochastic_cell(cell: I4, f: F4, seed: u32, n: Narrowing) -> f32 {
     let t = lanes::fixed(lanes::fade(f)).xyz();
-    let cell = cell.xyz();
-    let mut h = seed;
-    let mut k = 0;
-    for a in 0..3 {
-        let up = n.upper_fixed(t[a] as u64);
-        h ^= cell[a].wrapping_mul(PRIME[a]).wrapping_add(up & PRIME[a]);
-        k |= (up & 1) << a;
-    }
+    let (h, k) = pick_corner(cell.xyz(), t, seed, n);
     (grad(h) * (f - F4::new(&unit_corner(k)))).sum3()
 }
 
@@ -126,15 +141,7 @@ pub(super) fn perlin4_in_range(v: F4, seed: u32) -> f32 {
 pub(super) fn perlin4_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
     let (cell, f) = lanes::split_in_range(v);
     let t = lanes::fixed(lanes::fade(f)).xyzw();
-    let cell = cell.xyzw();
-    let mut n = Narrowing::new(xi);
-    let mut h = seed;
-    let mut k = 0;
-    for a in 0..4 {
-        let up = n.upper_fixed(t[a] as u64);
-        h ^= cell[a].wrapping_mul(PRIME[a]).wrapping_add(up & PRIME[a]);
-        k |= (up & 1) << a;
-    }
+    let (h, k) = pick_corner(cell.xyzw(), t, seed, Narrowing::new(xi));
     (grad4(h) * (f - F4::new(&unit_corner(k)))).sum4()
 }
 
