@@ -410,6 +410,16 @@ fn report(
                 r.bias.map_or("-".into(), |b| format!("{b:+.1e}")),
             );
         }
+        println!("  goals (issue 7; times are this machine's, this run's):");
+        for g in stochastic::goals(&rows) {
+            println!(
+                "  {:<28} {:<24} {:>36}  {}",
+                g.what,
+                g.goal,
+                g.measured,
+                if g.met { "met" } else { "not met" }
+            );
+        }
         rows_json = Some(serde_json::to_value(&rows).map_err(|e| e.to_string())?);
     }
     // FAST and CNJ details go beside the plots; `--json` is the documented list of

@@ -439,3 +439,129 @@ pub fn run_with(timed: usize) -> Vec<Row> {
     rows.extend(peers(&pts, &xis));
     rows
 }
+
+/// One goal of the report (issue 7), checked against a run's rows.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Goal {
+    /// What is measured: `perlin3 deterministic`, `gabor3 speedup`, …
+    pub what: String,
+    /// The goal, e.g. `≤ 25 ns` or `≥ 6×`.
+    pub goal: String,
+    /// What this run measured.
+    pub measured: String,
+    /// Whether the run meets it.
+    pub met: bool,
+}
+
+/// The paper's GPU speedups (Fajardo & Pharr, Table 1) that each estimator should reach.
+pub const PAPER_SPEEDUPS: [(&str, f64); 6] = [
+    ("perlin3", 1.9),
+    ("fbm3", 12.0),
+    ("sparse_conv3", 11.0),
+    ("fbm_sparse_conv3", 85.0),
+    ("gabor3", 6.0),
+    ("voronoi3", 4.0),
+];
+
+/// The goals of the report checked against `rows`: the deterministic 3D Perlin within 25 ns
+/// and fBm with 10 octaves within 240 ns, Worley F1 faster than every peer crate in the run,
+/// and each estimator's speedup at least [`PAPER_SPEEDUPS`]. A goal whose rows the run lacks
+/// (peers not compiled in) is left out. The times are this machine's, in this run: on a
+/// shared machine they move with its load, the speedups much less.
+pub fn goals(rows: &[Row]) -> Vec<Goal> {
+    let find = |noise: &str, variant: &str| {
+        rows.iter()
+            .find(|r| r.noise == noise && r.variant == variant)
+    };
+    let mut out = Vec::new();
+    for (noise, limit) in [("perlin3", 25.0), ("fbm3", 240.0)] {
+        if let Some(r) = find(noise, "deterministic") {
+            out.push(Goal {
+                what: format!("{noise} deterministic"),
+                goal: format!("≤ {limit} ns"),
+                measured: format!("{:.1} ns", r.ns_per_eval),
+                met: r.ns_per_eval <= limit,
+            });
+        }
+    }
+    // A peer row's speedup is our time over the peer's: below 1 when ours is faster.
+    let peers: Vec<&Row> = rows
+        .iter()
+        .filter(|r| r.noise == "worley3" && r.variant != "deterministic")
+        .collect();
+    if let Some(best) = peers
+        .iter()
+        .filter_map(|r| r.speedup.map(|s| (s, &r.variant)))
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+    {
+        out.push(Goal {
+            what: "worley3 deterministic".into(),
+            goal: "faster than every peer".into(),
+            measured: format!("{:.2}× the time of {}", best.0, best.1),
+            met: best.0 < 1.0,
+        });
+    }
+    for (noise, want) in PAPER_SPEEDUPS {
+        if let Some(s) = find(noise, "stochastic").and_then(|r| r.speedup) {
+            out.push(Goal {
+                what: format!("{noise} speedup"),
+                goal: format!("≥ {want}×"),
+                measured: format!("{s:.2}×"),
+                met: s >= want,
+            });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(noise: &str, variant: &str, ns: f64, speedup: Option<f64>) -> Row {
+        Row {
+            noise: noise.into(),
+            variant: variant.into(),
+            ns_per_eval: ns,
+            rmse: None,
+            rmse_stbn: None,
+            bias: None,
+            speedup,
+        }
+    }
+
+    #[test]
+    fn goals_are_checked_against_the_rows() {
+        let mut rows = vec![
+            row("perlin3", "deterministic", 24.9, None),
+            row("perlin3", "stochastic", 13.0, Some(1.3)),
+            row("fbm3", "deterministic", 241.0, None),
+            row("gabor3", "stochastic", 500.0, Some(6.0)),
+            row("worley3", "deterministic", 50.0, None),
+            row("worley3", "noise-functions", 80.0, Some(0.62)),
+            row("worley3", "fastnoise-lite", 160.0, Some(0.31)),
+        ];
+        let met = |g: &[Goal], what: &str| g.iter().find(|g| g.what == what).map(|g| g.met);
+        let g = goals(&rows);
+        assert_eq!(met(&g, "perlin3 deterministic"), Some(true));
+        assert_eq!(met(&g, "fbm3 deterministic"), Some(false));
+        assert_eq!(met(&g, "perlin3 speedup"), Some(false));
+        assert_eq!(met(&g, "gabor3 speedup"), Some(true), "6.0 meets ≥ 6");
+        assert_eq!(met(&g, "worley3 deterministic"), Some(true));
+        // Rows the run lacks give no goal.
+        assert_eq!(met(&g, "sparse_conv3 speedup"), None);
+        assert_eq!(g.len(), 5);
+        // One peer faster than ours fails the Worley goal, and the measure names it.
+        rows.push(row("worley3", "other-crate", 40.0, Some(1.25)));
+        let g = goals(&rows);
+        let w = g
+            .iter()
+            .find(|g| g.what == "worley3 deterministic")
+            .unwrap();
+        assert!(!w.met);
+        assert_eq!(w.measured, "1.25× the time of other-crate");
+        // Without peers there is no Worley goal.
+        rows.retain(|r| r.noise != "worley3" || r.variant == "deterministic");
+        assert_eq!(met(&goals(&rows), "worley3 deterministic"), None);
+    }
+}
