@@ -38,6 +38,21 @@ pub struct Row {
     pub speedup: Option<f64>,
 }
 
+impl Row {
+    /// A row with a time only (a deterministic or peer row): no error columns.
+    fn timed(noise: &str, variant: &str, ns_per_eval: f64, speedup: Option<f64>) -> Row {
+        Row {
+            noise: noise.into(),
+            variant: variant.into(),
+            ns_per_eval,
+            rmse: None,
+            rmse_stbn: None,
+            bias: None,
+            speedup,
+        }
+    }
+}
+
 /// Evaluations timed per function.
 const TIMED: usize = 1 << 16;
 /// Points whose error is measured (a 64×64 image, one STBN pixel per point).
@@ -211,14 +226,8 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
     use noise_functions::{CellDistance, Noise, Perlin};
     // Each peer is timed in alternating passes with our deterministic function of the same
     // noise (see `time_pair`); its row's `speedup` is ours / theirs (below 1: ours is faster).
-    let row = |noise: &str, variant: &str, (_, ns, ratio): (f64, f64, f64)| Row {
-        noise: noise.into(),
-        variant: variant.into(),
-        ns_per_eval: ns,
-        rmse: None,
-        rmse_stbn: None,
-        bias: None,
-        speedup: Some(ratio),
+    let row = |noise: &str, variant: &str, (_, ns, ratio): (f64, f64, f64)| {
+        Row::timed(noise, variant, ns, Some(ratio))
     };
     let fbm = Fractal::new(10, 2.0, 0.5);
     let ours_perlin = |p: [f32; 3], _: f32| perlin3(p, 1);
@@ -365,15 +374,7 @@ pub fn run_with(timed: usize) -> Vec<Row> {
     let mut rows = Vec::new();
     for (name, det, sto) in functions() {
         let (det_ns, sto_ns, speedup) = times[name];
-        rows.push(Row {
-            noise: name.into(),
-            variant: "deterministic".into(),
-            ns_per_eval: det_ns,
-            rmse: None,
-            rmse_stbn: None,
-            bias: None,
-            speedup: None,
-        });
+        rows.push(Row::timed(name, "deterministic", det_ns, None));
         if let Some(sto) = sto {
             let ns = sto_ns;
             let exact: Vec<f32> = img.iter().map(|&p| det(p)).collect();
@@ -518,28 +519,16 @@ pub fn goals(rows: &[Row]) -> Vec<Goal> {
 mod tests {
     use super::*;
 
-    fn row(noise: &str, variant: &str, ns: f64, speedup: Option<f64>) -> Row {
-        Row {
-            noise: noise.into(),
-            variant: variant.into(),
-            ns_per_eval: ns,
-            rmse: None,
-            rmse_stbn: None,
-            bias: None,
-            speedup,
-        }
-    }
-
     #[test]
     fn goals_are_checked_against_the_rows() {
         let mut rows = vec![
-            row("perlin3", "deterministic", 24.9, None),
-            row("perlin3", "stochastic", 13.0, Some(1.3)),
-            row("fbm3", "deterministic", 241.0, None),
-            row("gabor3", "stochastic", 500.0, Some(6.0)),
-            row("worley3", "deterministic", 50.0, None),
-            row("worley3", "noise-functions", 80.0, Some(0.62)),
-            row("worley3", "fastnoise-lite", 160.0, Some(0.31)),
+            Row::timed("perlin3", "deterministic", 24.9, None),
+            Row::timed("perlin3", "stochastic", 13.0, Some(1.3)),
+            Row::timed("fbm3", "deterministic", 241.0, None),
+            Row::timed("gabor3", "stochastic", 500.0, Some(6.0)),
+            Row::timed("worley3", "deterministic", 50.0, None),
+            Row::timed("worley3", "noise-functions", 80.0, Some(0.62)),
+            Row::timed("worley3", "fastnoise-lite", 160.0, Some(0.31)),
         ];
         let met = |g: &[Goal], what: &str| g.iter().find(|g| g.what == what).map(|g| g.met);
         let g = goals(&rows);
@@ -552,7 +541,7 @@ mod tests {
         assert_eq!(met(&g, "sparse_conv3 speedup"), None);
         assert_eq!(g.len(), 5);
         // One peer faster than ours fails the Worley goal, and the measure names it.
-        rows.push(row("worley3", "other-crate", 40.0, Some(1.25)));
+        rows.push(Row::timed("worley3", "other-crate", 40.0, Some(1.25)));
         let g = goals(&rows);
         let w = g
             .iter()
