@@ -314,8 +314,8 @@ pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
 /// one generic body), the two tails were merged and the packed multiply came back. In this
 /// four-lane form the masked split ([`split_in_range`](crate::math::split_in_range)) stays
 /// free of branches (LLVM vectorises its compare).
-// On x86_64 the lane form in `sse` runs instead; this one stays the code elsewhere and the
-// tests' reference there.
+// On x86_64 the lane form in `sse` runs instead; this one is the code on other targets and,
+// here, the reference the lane form's test compares with.
 #[cfg_attr(all(target_arch = "x86_64", target_feature = "sse2"), allow(dead_code))]
 #[inline(always)]
 fn perlin3_stochastic_in_range(p: [f32; 3], seed: u32, xi: f32) -> f32 {
