@@ -193,11 +193,8 @@ fn perlin2_stochastic_with(p: [f32; 2], seed: u32, xi: f32, sp: impl Fn(f32) -> 
 pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
     // One predictable branch buys guard-free splits for every ordinary coordinate.
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-    {
-        let v = crate::lanes::F4::from3(p);
-        if crate::lanes::in_split_range(v) {
-            return sse::perlin3_in_range(v, seed);
-        }
+    if let Some(v) = sse::perlin3(p, seed) {
+        return v;
     }
     #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
     if crate::math::in_split_range(p) {
@@ -293,11 +290,8 @@ pub fn perlin3_grad_cell(cell: [i32; 3], f: [f32; 3], seed: u32) -> (f32, [f32; 
 #[inline(always)]
 pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-    {
-        let v = crate::lanes::F4::from3(p);
-        if crate::lanes::in_split_range(v) {
-            return sse::perlin3_stochastic_in_range(v, seed, xi);
-        }
+    if let Some(v) = sse::perlin3_stochastic(p, seed, xi) {
+        return v;
     }
     #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
     if crate::math::in_split_range(p) {
@@ -410,11 +404,8 @@ fn corner_masks(c: usize) -> [u32; 4] {
 #[inline(always)]
 pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-    {
-        let v = crate::lanes::F4::from4(p);
-        if crate::lanes::in_split_range(v) {
-            return sse::perlin4_in_range(v, seed);
-        }
+    if let Some(v) = sse::perlin4(p, seed) {
+        return v;
     }
     #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
     if crate::math::in_split_range(p) {
@@ -475,11 +466,8 @@ pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 #[inline(always)]
 pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-    {
-        let v = crate::lanes::F4::from4(p);
-        if crate::lanes::in_split_range(v) {
-            return sse::perlin4_stochastic_in_range(v, seed, xi);
-        }
+    if let Some(v) = sse::perlin4_stochastic(p, seed, xi) {
+        return v;
     }
     #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
     if crate::math::in_split_range(p) {

@@ -9,6 +9,35 @@ use super::{GRAD3, GRAD4, Narrowing, PRIME, unit_corner};
 use crate::lanes::{self, F4, I4};
 use crate::stochastic::hash::CORNER_MUL;
 
+/// [`perlin3`](super::perlin3) on lanes, `None` outside the split range (where the scalar
+/// form runs). The four entry points below have the shape the scalar ones dispatch on.
+#[inline(always)]
+pub(super) fn perlin3(p: [f32; 3], seed: u32) -> Option<f32> {
+    let v = F4::from3(p);
+    lanes::in_split_range(v).then(|| perlin3_in_range(v, seed))
+}
+
+/// [`perlin3_stochastic`](super::perlin3_stochastic) on lanes, `None` outside the split range.
+#[inline(always)]
+pub(super) fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> Option<f32> {
+    let v = F4::from3(p);
+    lanes::in_split_range(v).then(|| perlin3_stochastic_in_range(v, seed, xi))
+}
+
+/// [`perlin4`](super::perlin4) on lanes, `None` outside the split range.
+#[inline(always)]
+pub(super) fn perlin4(p: [f32; 4], seed: u32) -> Option<f32> {
+    let v = F4::from4(p);
+    lanes::in_split_range(v).then(|| perlin4_in_range(v, seed))
+}
+
+/// [`perlin4_stochastic`](super::perlin4_stochastic) on lanes, `None` outside the split range.
+#[inline(always)]
+pub(super) fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> Option<f32> {
+    let v = F4::from4(p);
+    lanes::in_split_range(v).then(|| perlin4_stochastic_in_range(v, seed, xi))
+}
+
 /// The corner of a `D`-dimensional cell that the narrowing `n` picks for the fixed-point
 /// weights `t`, hashed axis by axis as it is picked: each axis adds its lower side's product
 /// and, on the upper side, the axis prime under the decision's mask (an add, no multiply and
@@ -39,7 +68,7 @@ fn grad(h: u32) -> F4 {
 
 /// [`perlin3`](super::perlin3) for a point in the split range.
 #[inline(always)]
-pub(super) fn perlin3_in_range(v: F4, seed: u32) -> f32 {
+fn perlin3_in_range(v: F4, seed: u32) -> f32 {
     let (cell, f) = lanes::split_in_range(v);
     let t = lanes::fade(f);
     let [cx, cy, cz] = cell.xyz();
@@ -81,7 +110,7 @@ pub(super) fn perlin3_in_range(v: F4, seed: u32) -> f32 {
 
 /// [`perlin3_stochastic`](super::perlin3_stochastic) for a point in the split range.
 #[inline(always)]
-pub(super) fn perlin3_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
+fn perlin3_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
     let (cell, f) = lanes::split_in_range(v);
     perlin3_stochastic_cell(cell, f, seed, Narrowing::new(xi))
 }
@@ -104,7 +133,7 @@ fn grad4(h: u32) -> F4 {
 
 /// [`perlin4`](super::perlin4) for a point in the split range.
 #[inline(always)]
-pub(super) fn perlin4_in_range(v: F4, seed: u32) -> f32 {
+fn perlin4_in_range(v: F4, seed: u32) -> f32 {
     let (cell, f) = lanes::split_in_range(v);
     let t = lanes::fade(f);
     let c = cell.xyzw();
@@ -138,7 +167,7 @@ pub(super) fn perlin4_in_range(v: F4, seed: u32) -> f32 {
 
 /// [`perlin4_stochastic`](super::perlin4_stochastic) for a point in the split range.
 #[inline(always)]
-pub(super) fn perlin4_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
+fn perlin4_stochastic_in_range(v: F4, seed: u32, xi: f32) -> f32 {
     let (cell, f) = lanes::split_in_range(v);
     let t = lanes::fixed(lanes::fade(f)).xyzw();
     let (h, k) = pick_corner(cell.xyzw(), t, seed, Narrowing::new(xi));
