@@ -18,11 +18,12 @@
 
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_add_ss, _mm_and_ps, _mm_and_si128,
-    _mm_castps_si128, _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cvtepi32_ps, _mm_cvtsi32_si128,
-    _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_max_ps, _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps,
-    _mm_mul_ps, _mm_set_ps, _mm_set1_epi32, _mm_set1_ps, _mm_setzero_si128, _mm_shuffle_epi32,
-    _mm_shuffle_ps, _mm_sra_epi32, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps,
-    _mm_xor_si128,
+    _mm_castps_si128, _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cmpgt_ps, _mm_cvtepi32_ps,
+    _mm_cvtsi32_si128, _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_cvttps_epi32, _mm_max_ps, _mm_min_ps,
+    _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_ps, _mm_set1_epi32,
+    _mm_set1_ps, _mm_setzero_ps, _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps,
+    _mm_slli_epi32, _mm_sra_epi32, _mm_srli_epi32, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_ps,
+    _mm_unpacklo_ps, _mm_xor_si128,
 };
 use core::ops::{Add, Mul, Sub};
 
@@ -305,4 +306,52 @@ pub(crate) fn fade(t: F4) -> F4 {
 pub(crate) fn fixed(t: F4) -> I4 {
     let one = t + F4::splat(1.0);
     I4(unsafe { _mm_sub_epi32(_mm_castps_si128(one.0), _mm_set1_epi32(0x3f80_0000)) })
+}
+
+/// [`sqrt_fast`](crate::math::sqrt_fast) on each lane, for lanes that are finite and not
+/// negative (squared distances): the same first guess and Newton steps in the same order. The
+/// scalar form's special cases change nothing there (for +0 both give 0), so none is tested.
+#[inline(always)]
+pub(crate) fn sqrt_fast(x: F4) -> F4 {
+    let guess = unsafe {
+        _mm_castsi128_ps(_mm_sub_epi32(
+            _mm_set1_epi32(0x5f37_5a86),
+            _mm_srli_epi32::<1>(_mm_castps_si128(x.0)),
+        ))
+    };
+    let mut y = F4(guess);
+    let h = F4::splat(0.5) * x;
+    for _ in 0..3 {
+        y = y * (F4::splat(1.5) - h * y * y);
+    }
+    x * y
+}
+
+/// [`exp_neg`](crate::math::exp_neg) on each lane, every input included: 0 for NaN and at or
+/// below −87, `e^0` above 0, else `2^k · 2^r` by the same reduction and Taylor series.
+#[inline(always)]
+pub(crate) fn exp_neg(x: F4) -> F4 {
+    use core::f32::consts::{LN_2, LOG2_E};
+    const MAGIC: f32 = 12_582_912.0;
+    // False for NaN, as the scalar form's `x.is_nan() || x <= -87` is true.
+    let keep = unsafe { _mm_cmpgt_ps(x.0, _mm_set1_ps(-87.0)) };
+    // `min` gives its second operand, 0, for NaN and positive lanes (and +0 for −0, which
+    // the scalar form keeps: both give exactly 1).
+    let x = F4(unsafe { _mm_min_ps(x.0, _mm_setzero_ps()) });
+    let y = x * F4::splat(LOG2_E);
+    let k = (y + F4::splat(MAGIC)) - F4::splat(MAGIC);
+    let r = (y - k) * F4::splat(LN_2);
+    let c = |v: f32| F4::splat(v);
+    let p = c(1.0)
+        + r * (c(1.0)
+            + r * (c(0.5)
+                + r * (c(1.0 / 6.0)
+                    + r * (c(1.0 / 24.0) + r * (c(1.0 / 120.0) + r * c(1.0 / 720.0))))));
+    let scale = unsafe {
+        _mm_castsi128_ps(_mm_slli_epi32::<23>(_mm_add_epi32(
+            _mm_cvttps_epi32(k.0),
+            _mm_set1_epi32(127),
+        )))
+    };
+    F4(unsafe { _mm_and_ps((p * F4(scale)).0, keep) })
 }

@@ -80,8 +80,9 @@ impl Hood {
         }
     }
 
-    /// Squared distance to the feature point of neighbour `(i, j, k)` (indices 0..3 = −1..+1).
-    #[inline(always)]
+    /// Squared distance to the feature point of neighbour `(i, j, k)` (indices 0..3 = −1..+1):
+    /// the reference the estimator's [`picked_d2`] is tested against.
+    #[cfg(test)]
     fn d2(&self, i: usize, j: usize, k: usize, seed: u32) -> f32 {
         let q = point3(corner(seed, self.p[0][i], self.p[1][j], self.p[2][k]));
         let x = self.f[0] - (i as f32 - 1.0) - q[0];
@@ -125,14 +126,39 @@ pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
     let best2 = if b01 < b[2] { b01 } else { b[2] };
     // Relative to the nearest point, so the sum is in [1, 27] and never underflows.
     let best = sqrt_fast(best2);
+    best - ln(exp_sum(&d, best, p)) / 32.0
+}
+
+/// `Σ e^(−32 (√d − best))` over the squared distances `d` of [`smooth_voronoi3`], one running
+/// sum per x column, added in column order.
+#[inline(always)]
+fn exp_sum(d: &[[f32; 3]; 9], best: f32, p: [f32; 3]) -> f32 {
+    // On lanes the three columns of a row at once, the same bits (the tests compare the two),
+    // when the distances are finite: for a point in the split range.
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    if in_split_range(p) {
+        use crate::lanes::{self, F4};
+        let (b, mut sums) = (F4::splat(best), F4::splat(0.0));
+        for row in d {
+            let v = lanes::sqrt_fast(F4::from3(*row));
+            sums = sums + lanes::exp_neg(F4::splat(-32.0) * (v - b));
+        }
+        return sums.sum3();
+    }
+    let _ = p;
+    exp_sum_scalar(d, best)
+}
+
+/// [`exp_sum`] on scalars: on targets without lanes, and for points outside the split range.
+#[inline(always)]
+fn exp_sum_scalar(d: &[[f32; 3]; 9], best: f32) -> f32 {
     let mut sums = [0.0f32; 3];
-    for row in &d {
+    for row in d {
         for i in 0..3 {
             sums[i] += exp_neg(-32.0 * (sqrt_fast(row[i]) - best));
         }
     }
-    let sum = sums[0] + sums[1] + sums[2];
-    best - ln(sum) / 32.0
+    sums[0] + sums[1] + sums[2]
 }
 
 /// Russian-roulette estimator of [`smooth_voronoi3`] (Algorithm 3): ξ picks one of the 2×2×2
@@ -141,16 +167,188 @@ pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
 /// (eq. 5). `q` is clamped to `[0, 1)`.
 #[inline]
 pub fn smooth_voronoi3_stochastic(p: [f32; 3], seed: u32, q: f32, xi: f32) -> f32 {
-    // The general split, not the dispatch of `Hood::new`: with the dispatch here, the
-    // benchmark measured 77 ns against 58.
-    let h = Hood::with(p, split);
     let xi = sanitize_xi(xi) * 8.0;
     let bits = (xi as u32).min(7);
     let rest = (xi - bits as f32).clamp(0.0, ONE_BELOW);
-    let idx: [usize; 3] = core::array::from_fn(|a| {
-        let low = if h.f[a] < 0.5 { 0 } else { 1 };
-        low + ((bits >> a) & 1) as usize
-    });
-    let approx = sqrt_fast(h.d2(idx[0], idx[1], idx[2], seed)).min(0.5);
-    russian_roulette(q, rest, approx, || smooth_voronoi3(p, seed))
+    let approx = sqrt_fast(picked_d2(p, seed, bits)).min(0.5);
+    let [x, y, z] = p;
+    russian_roulette(q, rest, approx, || smooth_voronoi3_of(x, y, z, seed))
+}
+
+/// [`smooth_voronoi3`] called with the coordinates in registers, for the estimator's rare
+/// full evaluation: with the array, the caller kept a copy of the point on its stack for the
+/// call and read its lanes back from that copy with one load across two stores, which the
+/// processor cannot forward (80 ns a sample against 53).
+#[inline(never)]
+fn smooth_voronoi3_of(x: f32, y: f32, z: f32, seed: u32) -> f32 {
+    smooth_voronoi3([x, y, z], seed)
+}
+
+/// The squared distance from `p` to the feature point of the cell that `bits` picks among the
+/// 2×2×2 cells nearest `p`: bit `a` set, the farther of the two along axis `a`.
+#[inline(always)]
+fn picked_d2(p: [f32; 3], seed: u32, bits: u32) -> f32 {
+    // For a point in the split range its split on lanes; the offset it gives may be exactly 1
+    // where the general split steps to the next cell with offset 0, which picks the same cells
+    // at the same offsets (the tests compare the two).
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        use crate::lanes::{self, F4};
+        let v = F4::from3(p);
+        if lanes::in_split_range(v) {
+            let (cell, f) = lanes::split_in_range(v);
+            return picked_d2_in(cell.xyz(), [f.x(), f.y(), f.z()], seed, bits);
+        }
+    }
+    let split = p.map(split);
+    picked_d2_in(split.map(|s| s.0 as u32), split.map(|s| s.1), seed, bits)
+}
+
+/// [`picked_d2`] from the cell of `p` and its offset `f` in it.
+#[inline(always)]
+fn picked_d2_in(cell: [u32; 3], f: [f32; 3], seed: u32, bits: u32) -> f32 {
+    let mut h = seed;
+    let mut d2 = 0.0;
+    let mut d = [0.0f32; 3];
+    for a in 0..3 {
+        // Index 0, 1 or 2 of the neighbourhood (offset −1, 0, +1): the nearer pair's lower one
+        // (by `f < 0.5`, NaN counting as the upper half), plus the axis' bit.
+        let upper_half = if f[a] < 0.5 { 0 } else { 1 };
+        let i = upper_half + ((bits >> a) & 1);
+        h ^= cell[a]
+            .wrapping_add(i)
+            .wrapping_sub(1)
+            .wrapping_mul(PRIME[a]);
+        d[a] = f[a] - (i as f32 - 1.0);
+    }
+    let q = point3(h.wrapping_mul(super::hash::CORNER_MUL));
+    for a in 0..3 {
+        let x = d[a] - q[a];
+        d2 += x * x;
+    }
+    d2
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::super::uniforms;
+    use super::*;
+    use std::{vec, vec::Vec};
+
+    /// Coordinates that are hard for the splits: integers and their neighbouring floats of both
+    /// signs (where the lane split's offset may be 1), halves (where the nearer pair of cells
+    /// changes), ±0, the edge of the split range and far beyond it.
+    fn hard() -> Vec<f32> {
+        let mut v = vec![
+            0.0,
+            -0.0,
+            1e-45,
+            -1e-45,
+            4_194_303.5,
+            -4_194_303.5,
+            1e7,
+            -3e38,
+        ];
+        for k in -3..=3 {
+            let k = k as f32;
+            let up = f32::from_bits(k.abs().to_bits() + 1);
+            let down = f32::from_bits(k.abs().to_bits().saturating_sub(1));
+            v.extend([k, up, -up, down, -down, k + 0.5, k - 0.5]);
+        }
+        v
+    }
+
+    /// Every triple of the hard coordinates, then random points.
+    fn points(mut check: impl FnMut([f32; 3])) {
+        let h = hard();
+        for &x in &h {
+            for &y in &h {
+                for &z in &h {
+                    check([x, y, z]);
+                }
+            }
+        }
+        let mut next = uniforms(0x6a09_e667_f3bc_c908);
+        for _ in 0..20_000 {
+            check([0; 3].map(|_| (next() - 0.5) * 2e3));
+        }
+    }
+
+    #[test]
+    fn picked_cell_is_the_neighbourhoods_bit_for_bit() {
+        points(|p| {
+            let h = Hood::with(p, split);
+            for bits in 0..8 {
+                // The cell as the estimator picked it before: the nearer pair along each axis
+                // from the general split's offset, and the bit of the axis.
+                let idx: [usize; 3] = core::array::from_fn(|a| {
+                    let low = if h.f[a] < 0.5 { 0 } else { 1 };
+                    low + ((bits >> a) & 1) as usize
+                });
+                let want = h.d2(idx[0], idx[1], idx[2], 5);
+                let got = picked_d2(p, 5, bits);
+                assert_eq!(got.to_bits(), want.to_bits(), "p {p:?}, bits {bits}");
+            }
+        });
+    }
+
+    #[test]
+    fn exponential_sum_on_lanes_is_the_scalar_sum_bit_for_bit() {
+        let mut seen = 0;
+        points(|p| {
+            let h = Hood::new(p);
+            let mut d = [[0.0f32; 3]; 9];
+            let mut n = 0;
+            h.each(9, |v| {
+                d[n] = v;
+                n += 1;
+            });
+            let best = sqrt_fast(d.iter().flatten().fold(f32::MAX, |a, &b| a.min(b)));
+            let (got, want) = (exp_sum(&d, best, p), exp_sum_scalar(&d, best));
+            assert_eq!(got.to_bits(), want.to_bits(), "p {p:?}: {got} vs {want}");
+            seen += in_split_range(p) as u32;
+        });
+        assert!(seen > 20_000, "the lane path ran {seen} times");
+    }
+
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[test]
+    fn lane_square_root_and_exponential_are_the_scalar_ones_bit_for_bit() {
+        use crate::lanes::{self, F4};
+        let mut next = uniforms(0xbb67_ae85_84ca_a73b);
+        let mut sq = vec![0.0f32, 1e-45, 1e-38, 0.25, 1.0, 2.999_999_8, 12.0, 3e38];
+        sq.extend((0..4000).map(|_| next() * 12.0));
+        let mut ex = vec![
+            0.0f32,
+            -0.0,
+            1e-30,
+            2.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -87.0,
+            f32::from_bits((-87.0f32).to_bits() - 1),
+            f32::from_bits((-87.0f32).to_bits() + 1),
+            -0.5,
+            -1e-40,
+        ];
+        ex.extend((0..4000).map(|_| -next() * 100.0));
+        for c in sq.chunks(4) {
+            let r = [0, 1, 2, 3].map(|i| c[i % c.len()]);
+            let v = lanes::sqrt_fast(F4::new(&r));
+            let got = [v.x(), v.y(), v.z(), v.w()];
+            for i in 0..4 {
+                assert_eq!(got[i].to_bits(), sqrt_fast(r[i]).to_bits(), "√{}", r[i]);
+            }
+        }
+        for c in ex.chunks(4) {
+            let r = [0, 1, 2, 3].map(|i| c[i % c.len()]);
+            let v = lanes::exp_neg(F4::new(&r));
+            let got = [v.x(), v.y(), v.z(), v.w()];
+            for i in 0..4 {
+                assert_eq!(got[i].to_bits(), exp_neg(r[i]).to_bits(), "e^{}", r[i]);
+            }
+        }
+    }
 }
