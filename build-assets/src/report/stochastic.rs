@@ -225,16 +225,7 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
         CellularDistanceFunction, CellularReturnType, FastNoiseLite, FractalType, NoiseType,
     };
     use noise_functions::{CellDistance, Noise, Perlin};
-    // Each peer is timed in alternating passes with our deterministic function of the same
-    // noise (see `time_pair`); its row's `speedup` is ours / theirs (below 1: ours is faster).
-    let row = |noise: &str, variant: &str, (_, ns, ratio): (f64, f64, f64)| {
-        Row::timed(noise, variant, ns, Some(ratio))
-    };
     let fbm = Fractal::new(10, 2.0, 0.5);
-    let ours_perlin = |p: [f32; 3], _: f32| perlin3(p, 1);
-    let ours_fbm = move |p: [f32; 3], _: f32| fbm3(p, fbm, 1);
-    let ours_worley = |p: [f32; 3], _: f32| worley3_f1(p, 1);
-    let ours_voronoi = |p: [f32; 3], _: f32| smooth_voronoi3(p, 1);
     let fnl = |t: NoiseType, fractal: bool| {
         let mut n = FastNoiseLite::new();
         n.set_noise_type(Some(t));
@@ -256,56 +247,66 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
     );
     let nf_fbm = Perlin.fbm(10, 0.5, 2.0);
     let nf_cell = CellDistance::default();
-    vec![
-        row(
-            "perlin3",
-            "noise-functions",
-            time_pair(pts, xis, ours_perlin, |p, _| Perlin.sample3(p)),
-        ),
-        row(
-            "perlin3",
-            "fastnoise-lite",
-            time_pair(pts, xis, ours_perlin, |p, _| {
-                p1.get_noise_3d(p[0], p[1], p[2])
-            }),
-        ),
-        row(
-            "fbm3",
-            "noise-functions",
-            time_pair(pts, xis, ours_fbm, |p, _| nf_fbm.sample3(p)),
-        ),
-        row(
-            "fbm3",
-            "fastnoise-lite",
-            time_pair(pts, xis, ours_fbm, |p, _| {
-                p10.get_noise_3d(p[0], p[1], p[2])
-            }),
-        ),
-        row(
-            "worley3",
-            "noise-functions",
-            time_pair(pts, xis, ours_worley, |p, _| nf_cell.sample3(p)),
-        ),
-        row(
-            "worley3",
-            "fastnoise-lite",
-            time_pair(pts, xis, ours_worley, |p, _| {
-                cell.get_noise_3d(p[0], p[1], p[2])
-            }),
-        ),
-        // Neither peer has smooth Voronoi; their nearest function, cellular F1, stands in.
-        row(
-            "voronoi3",
-            "noise-functions",
-            time_pair(pts, xis, ours_voronoi, |p, _| nf_cell.sample3(p)),
-        ),
-        row(
-            "voronoi3",
-            "fastnoise-lite",
-            time_pair(pts, xis, ours_voronoi, |p, _| {
-                cell.get_noise_3d(p[0], p[1], p[2])
-            }),
-        ),
+    let mut rows = Vec::new();
+    rows.extend(against_peers(
+        pts,
+        xis,
+        "perlin3",
+        |p, _| perlin3(p, 1),
+        |p, _| Perlin.sample3(p),
+        |p, _| p1.get_noise_3d(p[0], p[1], p[2]),
+    ));
+    rows.extend(against_peers(
+        pts,
+        xis,
+        "fbm3",
+        move |p, _| fbm3(p, fbm, 1),
+        |p, _| nf_fbm.sample3(p),
+        |p, _| p10.get_noise_3d(p[0], p[1], p[2]),
+    ));
+    rows.extend(against_peers(
+        pts,
+        xis,
+        "worley3",
+        |p, _| worley3_f1(p, 1),
+        |p, _| nf_cell.sample3(p),
+        |p, _| cell.get_noise_3d(p[0], p[1], p[2]),
+    ));
+    // Neither peer has smooth Voronoi; their nearest function, cellular F1, stands in.
+    rows.extend(against_peers(
+        pts,
+        xis,
+        "voronoi3",
+        |p, _| smooth_voronoi3(p, 1),
+        |p, _| nf_cell.sample3(p),
+        |p, _| cell.get_noise_3d(p[0], p[1], p[2]),
+    ));
+    rows
+}
+
+/// The rows of `noise` for the two peers, `noise-functions` (`nf`) and `fastnoise-lite`
+/// (`fnl`): each timed in alternating passes with `ours` (see [`time_pair`]), its `speedup`
+/// ours / theirs (below 1: ours is faster).
+#[cfg(feature = "peers")]
+fn against_peers<O, N, F>(
+    pts: &[[f32; 3]],
+    xis: &[f32],
+    noise: &str,
+    ours: O,
+    nf: N,
+    fnl: F,
+) -> [Row; 2]
+where
+    O: Fn([f32; 3], f32) -> f32 + Copy,
+    N: Fn([f32; 3], f32) -> f32 + Copy,
+    F: Fn([f32; 3], f32) -> f32 + Copy,
+{
+    let row = |variant: &str, (_, ns, ratio): (f64, f64, f64)| {
+        Row::timed(noise, variant, ns, Some(ratio))
+    };
+    [
+        row("noise-functions", time_pair(pts, xis, ours, nf)),
+        row("fastnoise-lite", time_pair(pts, xis, ours, fnl)),
     ]
 }
 
