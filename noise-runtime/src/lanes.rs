@@ -19,11 +19,11 @@
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_add_ss, _mm_and_ps, _mm_and_si128,
     _mm_castps_si128, _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cmpgt_ps, _mm_cvtepi32_ps,
-    _mm_cvtsi32_si128, _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_cvttps_epi32, _mm_max_ps, _mm_min_ps,
-    _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_ps, _mm_set1_epi32,
-    _mm_set1_ps, _mm_setzero_ps, _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps,
-    _mm_slli_epi32, _mm_sra_epi32, _mm_srli_epi32, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_ps,
-    _mm_unpacklo_ps, _mm_xor_si128,
+    _mm_cvtsi32_si128, _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_cvttps_epi32, _mm_max_ps, _mm_max_ss,
+    _mm_min_ps, _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_ps, _mm_set_ss,
+    _mm_set1_epi32, _mm_set1_ps, _mm_setzero_ps, _mm_setzero_si128, _mm_shuffle_epi32,
+    _mm_shuffle_ps, _mm_slli_epi32, _mm_sqrt_ps, _mm_sqrt_ss, _mm_sra_epi32, _mm_sub_epi32,
+    _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
 };
 use core::ops::{Add, Mul, Sub};
 
@@ -308,23 +308,19 @@ pub(crate) fn fixed(t: F4) -> I4 {
     I4(unsafe { _mm_sub_epi32(_mm_castps_si128(one.0), _mm_set1_epi32(0x3f80_0000)) })
 }
 
-/// [`sqrt_fast`](crate::math::sqrt_fast) on each lane, for lanes that are finite and not
-/// negative (squared distances): the same first guess and Newton steps in the same order. The
-/// scalar form's special cases change nothing there (for +0 both give 0), so none is tested.
+/// [`sqrt`](crate::math::sqrt) on each lane, for lanes that are finite and neither negative
+/// nor −0 (squared distances): `sqrtps`, correctly rounded like the scalar form, whose special
+/// cases change nothing there.
 #[inline(always)]
-pub(crate) fn sqrt_fast(x: F4) -> F4 {
-    let guess = unsafe {
-        _mm_castsi128_ps(_mm_sub_epi32(
-            _mm_set1_epi32(0x5f37_5a86),
-            _mm_srli_epi32::<1>(_mm_castps_si128(x.0)),
-        ))
-    };
-    let mut y = F4(guess);
-    let h = F4::splat(0.5) * x;
-    for _ in 0..3 {
-        y = y * (F4::splat(1.5) - h * y * y);
-    }
-    x * y
+pub(crate) fn sqrt(x: F4) -> F4 {
+    F4(unsafe { _mm_sqrt_ps(x.0) })
+}
+
+/// [`sqrt`](crate::math::sqrt) of one value: `sqrtss` of `max(x, 0)`, where `maxss` gives its
+/// second operand, +0, for NaN, −0 and negative `x`.
+#[inline(always)]
+pub(crate) fn sqrt1(x: f32) -> f32 {
+    unsafe { _mm_cvtss_f32(_mm_sqrt_ss(_mm_max_ss(_mm_set_ss(x), _mm_setzero_ps()))) }
 }
 
 /// [`exp_neg`](crate::math::exp_neg) on each lane, every input included: 0 for NaN and at or

@@ -135,7 +135,7 @@ impl SumOfSines3 {
         for i in 0..3 * SOS_WAVES {
             let h = |k: i32| crate::stochastic::hash3(i as i32, k, 0x5150_5150, seed);
             let z = 1.0 - 2.0 * unit(h(0));
-            let r = crate::math::sqrt_fast((1.0 - z * z).max(0.0));
+            let r = crate::math::sqrt((1.0 - z * z).max(0.0));
             let az = unit(h(1));
             let g = (unit(h(2)) + unit(h(3)) + unit(h(4)) + unit(h(5)) - 2.0) * 1.732_050_8;
             let f = (1.0 + g).max(0.05);

@@ -462,7 +462,7 @@ impl<'a> Region2<'a> {
             let (di, dj) = table[at[k]];
             out[k] = Neighbor2 {
                 point: fetch(at[k]),
-                distance: crate::math::sqrt_fast(d2[k]),
+                distance: crate::math::sqrt(d2[k]),
                 site: [center[0].wrapping_add(di), center[1].wrapping_add(dj)],
             };
         }
@@ -536,7 +536,7 @@ impl<'a> Region2<'a> {
             let d = d2(cand[18]);
             best[0] = if d < best[0] { d } else { best[0] };
             let b = if best[0] < best[1] { best[0] } else { best[1] };
-            *o = crate::math::sqrt_fast(if b < best[2] { b } else { best[2] });
+            *o = crate::math::sqrt(if b < best[2] { b } else { best[2] });
         }
     }
 

@@ -9,7 +9,7 @@
 
 use super::estimators::sanitize_xi;
 use super::sparse::{Reach, flip, importance_index, impulse, rotate, unit_bits};
-use crate::math::{cos_turns, exp_neg, sqrt_fast};
+use crate::math::{cos_turns, exp_neg, sqrt};
 
 /// Gabor noise parameters ([`GaborNoise::new`] prepares them for evaluation).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -115,7 +115,7 @@ fn kernel_at(h: u32, i: u32, v: [f32; 3], r2: f32, f0: f32) -> f32 {
     // Isotropic orientation from a second draw: z uniform in [−1, 1], azimuth uniform.
     let (o, _) = impulse(!h, i);
     let oz = 1.0 - 2.0 * o[0];
-    let rr = sqrt_fast(1.0 - oz * oz);
+    let rr = sqrt(1.0 - oz * oz);
     let (ox, oy) = (rr * cos_turns(o[1]), rr * cos_turns(o[1] - 0.25));
     exp_neg(-PI_A2 * r2) * cos_turns(f0 * (ox * x + oy * y + oz * z))
 }

@@ -7,7 +7,7 @@
 
 use super::estimators::{ONE_BELOW, russian_roulette, sanitize_xi};
 use super::hash::{PRIME, corner, point3};
-use crate::math::{exp_neg, in_split_range, ln, split, split_in_range, sqrt_fast};
+use crate::math::{exp_neg, in_split_range, ln, split, split_in_range, sqrt};
 
 /// The paper's roulette probability of keeping the cheap approximation.
 pub const SMOOTH_VORONOI_Q: f32 = 0.875;
@@ -105,7 +105,7 @@ pub fn worley3_f1(p: [f32; 3], seed: u32) -> f32 {
         }
     });
     let b = if best[0] < best[1] { best[0] } else { best[1] };
-    sqrt_fast(if b < best[2] { b } else { best[2] })
+    sqrt(if b < best[2] { b } else { best[2] })
 }
 
 /// Smooth Voronoi (eq. 12): `−(1/32) ln Σ_c e^(−32 |p − p_c|)` over the 27 cells.
@@ -125,7 +125,7 @@ pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
     let b01 = if b[0] < b[1] { b[0] } else { b[1] };
     let best2 = if b01 < b[2] { b01 } else { b[2] };
     // Relative to the nearest point, so the sum is in [1, 27] and never underflows.
-    let best = sqrt_fast(best2);
+    let best = sqrt(best2);
     best - ln(exp_sum(&d, best, p)) / 32.0
 }
 
@@ -140,7 +140,7 @@ fn exp_sum(d: &[[f32; 3]; 9], best: f32, p: [f32; 3]) -> f32 {
         use crate::lanes::{self, F4};
         let (b, mut sums) = (F4::splat(best), F4::splat(0.0));
         for row in d {
-            let v = lanes::sqrt_fast(F4::from3(*row));
+            let v = lanes::sqrt(F4::from3(*row));
             sums = sums + lanes::exp_neg(F4::splat(-32.0) * (v - b));
         }
         return sums.sum3();
@@ -155,7 +155,7 @@ fn exp_sum_scalar(d: &[[f32; 3]; 9], best: f32) -> f32 {
     let mut sums = [0.0f32; 3];
     for row in d {
         for i in 0..3 {
-            sums[i] += exp_neg(-32.0 * (sqrt_fast(row[i]) - best));
+            sums[i] += exp_neg(-32.0 * (sqrt(row[i]) - best));
         }
     }
     sums[0] + sums[1] + sums[2]
@@ -182,7 +182,7 @@ fn smooth_voronoi3_stochastic_of(x: f32, y: f32, z: f32, seed: u32, q: f32, xi: 
     let xi = sanitize_xi(xi) * 8.0;
     let bits = (xi as u32).min(7);
     let rest = (xi - bits as f32).clamp(0.0, ONE_BELOW);
-    let approx = sqrt_fast(picked_d2(p, seed, bits)).min(0.5);
+    let approx = sqrt(picked_d2(p, seed, bits)).min(0.5);
     russian_roulette(q, rest, approx, || smooth_voronoi3_of(x, y, z, seed))
 }
 
@@ -315,7 +315,7 @@ mod tests {
                 d[n] = v;
                 n += 1;
             });
-            let best = sqrt_fast(d.iter().flatten().fold(f32::MAX, |a, &b| a.min(b)));
+            let best = sqrt(d.iter().flatten().fold(f32::MAX, |a, &b| a.min(b)));
             let (got, want) = (exp_sum(&d, best, p), exp_sum_scalar(&d, best));
             assert_eq!(got.to_bits(), want.to_bits(), "p {p:?}: {got} vs {want}");
             seen += in_split_range(p) as u32;
@@ -356,7 +356,7 @@ mod tests {
                 }
             }
         };
-        check(&sq, lanes::sqrt_fast, sqrt_fast, "sqrt_fast");
+        check(&sq, lanes::sqrt, sqrt, "sqrt");
         check(&ex, lanes::exp_neg, exp_neg, "exp_neg");
     }
 }
