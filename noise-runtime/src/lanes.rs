@@ -18,9 +18,10 @@
 
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_add_ss, _mm_and_ps, _mm_and_si128,
-    _mm_castps_si128, _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cmpgt_ps, _mm_cvtepi32_ps,
-    _mm_cvtsi32_si128, _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_cvttps_epi32, _mm_max_ps, _mm_max_ss,
-    _mm_min_ps, _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_ps, _mm_set_ss,
+    _mm_castps_si128, _mm_castsi128_ps, _mm_cmpeq_epi32, _mm_cmpgt_epi32, _mm_cmpgt_ps,
+    _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_cvtsi32_si128, _mm_cvtsi128_si32, _mm_cvtss_f32,
+    _mm_cvttps_epi32, _mm_cvttss_si32, _mm_max_ps, _mm_max_ss, _mm_min_ps, _mm_movehl_ps,
+    _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_epi32, _mm_set_ps, _mm_set_ss,
     _mm_set1_epi32, _mm_set1_ps, _mm_setzero_ps, _mm_setzero_si128, _mm_shuffle_epi32,
     _mm_shuffle_ps, _mm_slli_epi32, _mm_sqrt_ps, _mm_sqrt_ss, _mm_sra_epi32, _mm_sub_epi32,
     _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
@@ -115,6 +116,12 @@ impl F4 {
         F4(unsafe { _mm_max_ps(self.0, o.0) })
     }
 
+    /// All ones in each lane where `lane < v` (not where the lane is NaN), else 0.
+    #[inline(always)]
+    pub(crate) fn less(self, v: f32) -> I4 {
+        I4(unsafe { _mm_castps_si128(_mm_cmplt_ps(self.0, _mm_set1_ps(v))) })
+    }
+
     /// `(x + y) + z`, the order of a scalar three-term dot product.
     #[inline(always)]
     pub(crate) fn sum3(self) -> f32 {
@@ -207,6 +214,22 @@ impl Sub for F4 {
     }
 }
 
+impl Add for I4 {
+    type Output = I4;
+    #[inline(always)]
+    fn add(self, o: I4) -> I4 {
+        I4(unsafe { _mm_add_epi32(self.0, o.0) })
+    }
+}
+
+impl Sub for I4 {
+    type Output = I4;
+    #[inline(always)]
+    fn sub(self, o: I4) -> I4 {
+        I4(unsafe { _mm_sub_epi32(self.0, o.0) })
+    }
+}
+
 impl Mul for F4 {
     type Output = F4;
     #[inline(always)]
@@ -216,6 +239,18 @@ impl Mul for F4 {
 }
 
 impl I4 {
+    /// All ones in lane `a < 4` where bit `a` of `bits` is set, else 0.
+    #[inline(always)]
+    pub(crate) fn bit_masks(bits: u32) -> I4 {
+        unsafe {
+            let each = _mm_set_epi32(8, 4, 2, 1);
+            I4(_mm_cmpeq_epi32(
+                _mm_and_si128(_mm_set1_epi32(bits as i32), each),
+                each,
+            ))
+        }
+    }
+
     /// Each lane shifted right by `s < 32`, arithmetically: `⌊c / 2^s⌋`.
     #[inline(always)]
     pub(crate) fn floor_div_pow2(self, s: u32) -> I4 {
@@ -314,6 +349,13 @@ pub(crate) fn fixed(t: F4) -> I4 {
 #[inline(always)]
 pub(crate) fn sqrt(x: F4) -> F4 {
     F4(unsafe { _mm_sqrt_ps(x.0) })
+}
+
+/// `t as i32` for a `t` known to be in range (`|t| < 2^31`): `cvttss2si` alone, without the
+/// checks of the saturating `as` (NaN and out-of-range give `i32::MIN`).
+#[inline(always)]
+pub(crate) fn trunc1(t: f32) -> i32 {
+    unsafe { _mm_cvttss_si32(_mm_set_ss(t)) }
 }
 
 /// [`sqrt`](crate::math::sqrt) of one value: `sqrtss` of `max(x, 0)`, where `maxss` gives its

@@ -222,8 +222,16 @@ pub fn bilerp_estimate<T>(tx: f32, ty: f32, xi: f32, f: impl FnOnce(u32, u32) ->
 /// `(f() − p·approx) / (1 − p)`, whose expectation is `f()`. `p` is clamped to `[0, 1)`.
 #[inline(always)]
 pub fn russian_roulette(p: f32, xi: f32, approx: f32, f: impl FnOnce() -> f32) -> f32 {
+    roulette_in_range(p, sanitize_xi(xi), approx, f)
+}
+
+/// [`russian_roulette`] for a ξ already in `[0, 1)` (an estimator's remapped ξ): the same
+/// result without clamping ξ again.
+#[inline(always)]
+pub(crate) fn roulette_in_range(p: f32, xi: f32, approx: f32, f: impl FnOnce() -> f32) -> f32 {
+    debug_assert!((0.0..1.0).contains(&xi), "ξ = {xi}");
     let p = if p >= 0.0 { p.min(ONE_BELOW) } else { 0.0 };
-    if sanitize_xi(xi) < p {
+    if xi < p {
         approx
     } else {
         (f() - p * approx) / (1.0 - p)

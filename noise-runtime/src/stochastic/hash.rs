@@ -61,6 +61,12 @@ pub(crate) fn point3(h: u32) -> [f32; 3] {
     [p[0], p[1], p[2]]
 }
 
+/// [`point3`] as its padded table row `[x, y, z, 0]`, for a 16-byte lane load.
+#[inline(always)]
+pub(crate) fn point3_row(h: u32) -> &'static [f32; 4] {
+    &POINTS[(h >> 22) as usize]
+}
+
 /// 1024 feature points in the unit cell (16 KiB), each coordinate on the 1/1024 grid at a cell
 /// centre `(k + ½)/1024`, from a multiply–xorshift hash of the index: as many distinct points
 /// as the 10 hash bits can choose. Padded to four lanes so a point is one 16-byte read.

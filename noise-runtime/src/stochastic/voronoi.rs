@@ -5,7 +5,7 @@
 //! All 27 cells are evaluated without branches: pruning by cell-box distance saves hashes but
 //! its branches mispredict, which costs more on a CPU.
 
-use super::estimators::{ONE_BELOW, russian_roulette, sanitize_xi};
+use super::estimators::{roulette_in_range, sanitize_xi};
 use super::hash::{PRIME, corner, point3};
 use crate::math::{exp_neg, in_split_range, ln, split, split_in_range, sqrt};
 
@@ -176,14 +176,18 @@ pub fn smooth_voronoi3_stochastic(p: [f32; 3], seed: u32, q: f32, xi: f32) -> f3
 /// stored, with one 8-byte and one 4-byte store; the lane split read the point back with a
 /// load across the two, which the processor cannot forward from the stores (a stall of each
 /// call: 75 ns a sample in the report against 41 inlined).
-#[inline]
+#[inline(always)]
 fn smooth_voronoi3_stochastic_of(x: f32, y: f32, z: f32, seed: u32, q: f32, xi: f32) -> f32 {
     let p = [x, y, z];
-    let xi = sanitize_xi(xi) * 8.0;
-    let bits = (xi as u32).min(7);
-    let rest = (xi - bits as f32).clamp(0.0, ONE_BELOW);
+    let t = sanitize_xi(xi) * 8.0;
+    // t is in [0, 8): its integer part is the cell's 3 bits, and t minus it is exact, in [0, 1).
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    let bits = crate::lanes::trunc1(t) as u32 & 7;
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    let bits = (t as u32).min(7);
+    let rest = t - bits as f32;
     let approx = sqrt(picked_d2(p, seed, bits)).min(0.5);
-    russian_roulette(q, rest, approx, || smooth_voronoi3_of(x, y, z, seed))
+    roulette_in_range(q, rest, approx, || smooth_voronoi3_of(x, y, z, seed))
 }
 
 /// [`smooth_voronoi3`] called with the coordinates in registers, for the estimator's rare
@@ -208,11 +212,30 @@ fn picked_d2(p: [f32; 3], seed: u32, bits: u32) -> f32 {
         let v = F4::from3(p);
         if lanes::in_split_range(v) {
             let (cell, f) = lanes::split_in_range(v);
-            return picked_d2_in(cell.xyz(), [f.x(), f.y(), f.z()], seed, bits);
+            return picked_d2_lanes(cell, f, seed, bits);
         }
     }
     let split = p.map(split);
     picked_d2_in(split.map(|s| s.0 as u32), split.map(|s| s.1), seed, bits)
+}
+
+/// [`picked_d2_in`] on lanes: per axis `i − 1 = −1 + [f ≥ ½] + bit`, the cell's offset and
+/// the point's offset from it on lanes; only the three hash products are scalar (SSE2 has
+/// no 32-bit lane multiply). With masks of all ones for true, `−1 + [f ≥ ½]` is the mask of
+/// `f < ½` (0 or −1) and `+ bit` subtracts the bit's mask.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[inline(always)]
+fn picked_d2_lanes(cell: crate::lanes::I4, f: crate::lanes::F4, seed: u32, bits: u32) -> f32 {
+    use crate::lanes::{F4, I4};
+    let im1 = f.less(0.5) - I4::bit_masks(bits);
+    let [cx, cy, cz] = (cell + im1).xyz();
+    let h =
+        seed ^ cx.wrapping_mul(PRIME[0]) ^ cy.wrapping_mul(PRIME[1]) ^ cz.wrapping_mul(PRIME[2]);
+    let q = F4::new(super::hash::point3_row(
+        h.wrapping_mul(super::hash::CORNER_MUL),
+    ));
+    let d = (f - im1.to_f32()) - q;
+    (d * d).sum3()
 }
 
 /// [`picked_d2`] from the cell of `p` and its offset `f` in it.
@@ -243,6 +266,7 @@ fn picked_d2_in(cell: [u32; 3], f: [f32; 3], seed: u32, bits: u32) -> f32 {
 #[cfg(test)]
 mod tests {
     extern crate std;
+    use super::super::estimators::ONE_BELOW;
     use super::super::uniforms;
     use super::*;
     use std::{vec, vec::Vec};
@@ -301,6 +325,65 @@ mod tests {
                 let got = picked_d2(p, 5, bits);
                 assert_eq!(got.to_bits(), want.to_bits(), "p {p:?}, bits {bits}");
             }
+        });
+    }
+
+    /// Algorithm 3 as the paper writes it, on the general split and the neighbourhood's `d2`.
+    fn algorithm3(p: [f32; 3], seed: u32, q: f32, xi: f32) -> f32 {
+        let h = Hood::with(p, split);
+        let t = sanitize_xi(xi) * 8.0;
+        let bits = (t as u32).min(7);
+        let rest = (t - bits as f32).clamp(0.0, ONE_BELOW);
+        let idx: [usize; 3] = core::array::from_fn(|a| {
+            let low = if h.f[a] < 0.5 { 0 } else { 1 };
+            low + ((bits >> a) & 1) as usize
+        });
+        let approx = sqrt(h.d2(idx[0], idx[1], idx[2], seed)).min(0.5);
+        let q = if q >= 0.0 { q.min(ONE_BELOW) } else { 0.0 };
+        if rest < q {
+            approx
+        } else {
+            (smooth_voronoi3(p, seed) - q * approx) / (1.0 - q)
+        }
+    }
+
+    #[test]
+    fn estimator_is_algorithm_3_bit_for_bit() {
+        // ξ at 0 and 1, past both ends, NaN, at and beside each eighth (where the cell and the
+        // remapped ξ change), and beside q's eighth-scaled threshold.
+        let mut xis = vec![0.0f32, 1.0, -0.5, 2.0, f32::NAN, ONE_BELOW, 1e-30];
+        for k in 1..8 {
+            let e = k as f32 / 8.0;
+            xis.extend([
+                e,
+                f32::from_bits(e.to_bits() - 1),
+                f32::from_bits(e.to_bits() + 1),
+            ]);
+            let t = (k as f32 + SMOOTH_VORONOI_Q) / 8.0;
+            xis.extend([
+                t,
+                f32::from_bits(t.to_bits() - 1),
+                f32::from_bits(t.to_bits() + 1),
+            ]);
+        }
+        let mut next = uniforms(0x3c6e_f372_fe94_f82b);
+        let mut n = 0usize;
+        points(|p| {
+            let xi = xis[n % xis.len()];
+            let r = next();
+            for (q, xi) in [
+                (SMOOTH_VORONOI_Q, xi),
+                (SMOOTH_VORONOI_Q, r),
+                (0.0, r),
+                (1.0, r),
+            ] {
+                let (got, want) = (
+                    smooth_voronoi3_stochastic(p, 3, q, xi),
+                    algorithm3(p, 3, q, xi),
+                );
+                assert_eq!(got.to_bits(), want.to_bits(), "p {p:?}, q {q}, ξ {xi:e}");
+            }
+            n += 1;
         });
     }
 
