@@ -109,6 +109,12 @@ impl F4 {
         ywyw = 0b11_01_11_01;
     }
 
+    /// `if self < o { self } else { o }` per lane (`minps`; `o` where either is NaN).
+    #[inline(always)]
+    pub(crate) fn min(self, o: F4) -> F4 {
+        F4(unsafe { _mm_min_ps(self.0, o.0) })
+    }
+
     /// `max(self, o)` per lane (`o` where either is NaN, as `f32::max(self, o)` for a
     /// non-NaN `o`).
     #[inline(always)]
@@ -175,7 +181,7 @@ impl F4 {
 
     /// The columns of the rows `r`: lane `a` of every row, for `a` = 0…3.
     #[inline(always)]
-    fn transpose(r: [F4; 4]) -> [F4; 4] {
+    pub(crate) fn transpose(r: [F4; 4]) -> [F4; 4] {
         let [r0, r1, r2, r3] = r.map(|v| v.0);
         unsafe {
             let lo01 = _mm_unpacklo_ps(r0, r1);

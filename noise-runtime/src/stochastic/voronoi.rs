@@ -7,6 +7,8 @@
 
 use super::estimators::{roulette_in_range, sanitize_xi};
 use super::hash::{PRIME, corner, point3};
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+use crate::lanes::F4;
 use crate::math::{exp_neg, in_split_range, ln, split, split_in_range, sqrt};
 
 /// The paper's roulette probability of keeping the cheap approximation.
@@ -92,73 +94,158 @@ impl Hood {
     }
 }
 
+/// The 27 cells in the order of [`Hood::each`] (z, then y, then x) in seven groups of four,
+/// on lanes, for a point in the split range from its lane split: lane `l` of group `g` is cell
+/// `4g + l`, and the last group's lane 3, past the 27, has distance `f32::MAX` (a term of 0).
+///
+/// Four cells' feature points are four 16-byte table reads transposed into x, y and z lanes;
+/// each distance is the scalar one's operations in the same order, so the same bits (the tests
+/// compare the two). Four lanes for 27 cells, not the three cells of a row: seven square roots
+/// and exponentials instead of nine.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[inline(always)]
+fn groups_lanes(cell: crate::lanes::I4, f: F4, seed: u32) -> [F4; 7] {
+    use super::hash::point3_row;
+    let prods = |c: u32, a: usize| {
+        let b = c.wrapping_mul(PRIME[a]);
+        [b.wrapping_sub(PRIME[a]), b, b.wrapping_add(PRIME[a])]
+    };
+    let [cx, cy, cz] = cell.xyz();
+    let (px, py, pz) = (prods(cx, 0), prods(cy, 1), prods(cz, 2));
+    let (fx, fy, fz) = (f.xxxx(), f.yyyy(), f.zzzz());
+    let row = |c: usize| {
+        let c = c.min(26);
+        F4::new(point3_row(corner(
+            seed ^ pz[c / 9] ^ py[c / 3 % 3],
+            px[c % 3],
+            0,
+            0,
+        )))
+    };
+    let group = |g: usize| {
+        let c = 4 * g;
+        let [qx, qy, qz, _] = F4::transpose([row(c), row(c + 1), row(c + 2), row(c + 3)]);
+        // `f + 1`, `f + 0` (which differs from `f` only for −0, to the same differences) and
+        // `f − 1` per axis.
+        let dx = (fx + F4::new(&OFFSETS[g][0])) - qx;
+        let dy = (fy + F4::new(&OFFSETS[g][1])) - qy;
+        let dz = (fz + F4::new(&OFFSETS[g][2])) - qz;
+        dx * dx + dy * dy + dz * dz
+    };
+    // Spelled out, so every index is a constant: as a loop or `array::from_fn`, LLVM kept the
+    // loop (or the calls) and computed the indices at run time.
+    let mut d = [
+        group(0),
+        group(1),
+        group(2),
+        group(3),
+        group(4),
+        group(5),
+        group(6),
+    ];
+    d[6] = d[6].max(F4::new(&[0.0, 0.0, 0.0, f32::MAX]));
+    d
+}
+
+/// Per group of [`groups_lanes`], per axis, the lanes' cell offsets negated: `1 − i` for the
+/// cell at index `i` (offset `i − 1`) along the axis.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+const OFFSETS: [[[f32; 4]; 3]; 7] = {
+    let mut o = [[[0.0f32; 4]; 3]; 7];
+    let mut c = 0;
+    while c < 28 {
+        let k = if c < 27 { c } else { 26 };
+        o[c / 4][0][c % 4] = 1.0 - (k % 3) as f32;
+        o[c / 4][1][c % 4] = 1.0 - (k / 3 % 3) as f32;
+        o[c / 4][2][c % 4] = 1.0 - (k / 9) as f32;
+        c += 1;
+    }
+    o
+};
+
+/// The 27 squared distances of [`Hood::each`] in its order.
+#[inline(always)]
+fn flat(h: &Hood, seed: u32) -> [f32; 27] {
+    let mut d = [0.0f32; 27];
+    let mut n = 0;
+    h.each(seed, |v| {
+        d[n..n + 3].copy_from_slice(&v);
+        n += 3;
+    });
+    d
+}
+
 /// Worley F1: the distance to the nearest feature point.
 #[inline]
 pub fn worley3_f1(p: [f32; 3], seed: u32) -> f32 {
     // All 27 cells, branch-free: faster than pruning, whose branches are unpredictable.
-    let h = Hood::new(p);
-    // Three running minima (one per x column) keep the dependency chains short.
-    let mut best = [f32::MAX; 3];
-    h.each(seed, |d| {
-        for i in 0..3 {
-            best[i] = if d[i] < best[i] { d[i] } else { best[i] };
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        let v = F4::from3(p);
+        if crate::lanes::in_split_range(v) {
+            let (cell, f) = crate::lanes::split_in_range(v);
+            return sqrt(min_lanes(&groups_lanes(cell, f, seed)));
         }
-    });
-    let b = if best[0] < best[1] { best[0] } else { best[1] };
-    sqrt(if b < best[2] { b } else { best[2] })
+    }
+    worley3_f1_scalar(p, seed)
 }
 
-/// Smooth Voronoi (eq. 12): `−(1/32) ln Σ_c e^(−32 |p − p_c|)` over the 27 cells.
+/// [`worley3_f1`] on scalars: on targets without lanes, and for points outside the split range.
+#[inline(always)]
+fn worley3_f1_scalar(p: [f32; 3], seed: u32) -> f32 {
+    sqrt(flat(&Hood::new(p), seed).into_iter().fold(f32::MAX, min))
+}
+
+/// `if a < b { a } else { b }`: the minimum, as `minss` computes it.
+#[inline(always)]
+fn min(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+/// The least lane of seven groups (no lane NaN).
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[inline(always)]
+fn min_lanes(d: &[F4; 7]) -> f32 {
+    // A tree, for a short chain.
+    let m = (d[0].min(d[1]).min(d[2].min(d[3]))).min(d[4].min(d[5]).min(d[6]));
+    min(min(m.x(), m.y()), min(m.z(), m.w()))
+}
+
+/// Smooth Voronoi (eq. 12): `−(1/32) ln Σ_c e^(−32 |p − p_c|)` over the 27 cells, as
+/// `d₁ − (1/32) ln Σ_c e^(−32 (|p − p_c| − d₁))` with `d₁` the nearest distance, so the sum is
+/// in [1, 27] and never underflows. The terms are summed in four running sums, cell `c` into
+/// sum `c mod 4`, then `(s₀ + s₁) + (s₂ + s₃)`: the order of the lanes, on every target.
 #[inline]
 pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
-    let h = Hood::new(p);
-    let mut d = [[0.0f32; 3]; 9];
-    let mut n = 0;
-    let mut b = [f32::MAX; 3];
-    h.each(seed, |v| {
-        d[n] = v;
-        n += 1;
-        for i in 0..3 {
-            b[i] = if v[i] < b[i] { v[i] } else { b[i] };
-        }
-    });
-    let b01 = if b[0] < b[1] { b[0] } else { b[1] };
-    let best2 = if b01 < b[2] { b01 } else { b[2] };
-    // Relative to the nearest point, so the sum is in [1, 27] and never underflows.
-    let best = sqrt(best2);
-    best - ln(exp_sum(&d, best, p)) / 32.0
-}
-
-/// `Σ e^(−32 (√d − best))` over the squared distances `d` of [`smooth_voronoi3`], one running
-/// sum per x column, added in column order.
-#[inline(always)]
-fn exp_sum(d: &[[f32; 3]; 9], best: f32, p: [f32; 3]) -> f32 {
-    // On lanes the three columns of a row at once, the same bits (the tests compare the two),
-    // when the distances are finite: for a point in the split range.
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-    if in_split_range(p) {
-        use crate::lanes::{self, F4};
-        let (b, mut sums) = (F4::splat(best), F4::splat(0.0));
-        for row in d {
-            let v = lanes::sqrt(F4::from3(*row));
-            sums = sums + lanes::exp_neg(F4::splat(-32.0) * (v - b));
+    {
+        use crate::lanes;
+        let v = F4::from3(p);
+        if lanes::in_split_range(v) {
+            let (cell, f) = lanes::split_in_range(v);
+            let d = groups_lanes(cell, f, seed);
+            let best = sqrt(min_lanes(&d));
+            let (b, mut sums) = (F4::splat(best), F4::splat(0.0));
+            for g in d {
+                sums = sums + lanes::exp_neg(F4::splat(-32.0) * (lanes::sqrt(g) - b));
+            }
+            return best - ln(sums.sum4()) / 32.0;
         }
-        return sums.sum3();
     }
-    let _ = p;
-    exp_sum_scalar(d, best)
+    smooth_voronoi3_scalar(p, seed)
 }
 
-/// [`exp_sum`] on scalars: on targets without lanes, and for points outside the split range.
+/// [`smooth_voronoi3`] on scalars: on targets without lanes, and for points outside the split
+/// range.
 #[inline(always)]
-fn exp_sum_scalar(d: &[[f32; 3]; 9], best: f32) -> f32 {
-    let mut sums = [0.0f32; 3];
-    for row in d {
-        for i in 0..3 {
-            sums[i] += exp_neg(-32.0 * (sqrt(row[i]) - best));
-        }
+fn smooth_voronoi3_scalar(p: [f32; 3], seed: u32) -> f32 {
+    let d = flat(&Hood::new(p), seed);
+    let best = sqrt(d.into_iter().fold(f32::MAX, min));
+    let mut sums = [0.0f32; 4];
+    for (c, &d2) in d.iter().enumerate() {
+        sums[c % 4] += exp_neg(-32.0 * (sqrt(d2) - best));
     }
-    sums[0] + sums[1] + sums[2]
+    best - ln((sums[0] + sums[1]) + (sums[2] + sums[3])) / 32.0
 }
 
 /// Russian-roulette estimator of [`smooth_voronoi3`] (Algorithm 3): ξ picks one of the 2×2×2
@@ -387,21 +474,41 @@ mod tests {
         });
     }
 
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
     #[test]
-    fn exponential_sum_on_lanes_is_the_scalar_sum_bit_for_bit() {
+    fn lanes_are_the_scalar_forms_bit_for_bit() {
+        use crate::lanes::{self, F4};
         let mut seen = 0;
         points(|p| {
-            let h = Hood::new(p);
-            let mut d = [[0.0f32; 3]; 9];
-            let mut n = 0;
-            h.each(9, |v| {
-                d[n] = v;
-                n += 1;
-            });
-            let best = sqrt(d.iter().flatten().fold(f32::MAX, |a, &b| a.min(b)));
-            let (got, want) = (exp_sum(&d, best, p), exp_sum_scalar(&d, best));
-            assert_eq!(got.to_bits(), want.to_bits(), "p {p:?}: {got} vs {want}");
-            seen += in_split_range(p) as u32;
+            let v = F4::from3(p);
+            if !lanes::in_split_range(v) {
+                return;
+            }
+            seen += 1;
+            let (cell, f) = lanes::split_in_range(v);
+            let groups = groups_lanes(cell, f, 9);
+            let want = flat(&Hood::new(p), 9);
+            for (c, want) in want.iter().enumerate() {
+                let g = groups[c / 4];
+                let got = [g.x(), g.y(), g.z(), g.w()][c % 4];
+                assert_eq!(got.to_bits(), want.to_bits(), "p {p:?}, cell {c}");
+            }
+            assert_eq!(groups[6].w(), f32::MAX, "p {p:?}: lane 27");
+            for (name, lane, scalar) in [
+                (
+                    "smooth",
+                    smooth_voronoi3 as fn([f32; 3], u32) -> f32,
+                    smooth_voronoi3_scalar as fn([f32; 3], u32) -> f32,
+                ),
+                ("Worley", worley3_f1, worley3_f1_scalar),
+            ] {
+                let (got, want) = (lane(p, 9), scalar(p, 9));
+                assert_eq!(
+                    got.to_bits(),
+                    want.to_bits(),
+                    "{name}, p {p:?}: {got} vs {want}"
+                );
+            }
         });
         assert!(seen > 20_000, "the lane path ran {seen} times");
     }
