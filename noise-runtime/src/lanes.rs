@@ -18,13 +18,12 @@
 
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_epi32, _mm_add_ps, _mm_add_ss, _mm_and_ps, _mm_and_si128,
-    _mm_castps_si128, _mm_castsi128_ps, _mm_cmpeq_epi32, _mm_cmpgt_epi32, _mm_cmpgt_ps,
-    _mm_cmplt_ps, _mm_cvtepi32_ps, _mm_cvtsi32_si128, _mm_cvtsi128_si32, _mm_cvtss_f32,
-    _mm_cvttps_epi32, _mm_cvttss_si32, _mm_max_ps, _mm_max_ss, _mm_min_ps, _mm_movehl_ps,
-    _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps, _mm_set_epi32, _mm_set_ps, _mm_set_ss,
-    _mm_set1_epi32, _mm_set1_ps, _mm_setzero_ps, _mm_setzero_si128, _mm_shuffle_epi32,
-    _mm_shuffle_ps, _mm_slli_epi32, _mm_sqrt_ps, _mm_sqrt_ss, _mm_sra_epi32, _mm_sub_epi32,
-    _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
+    _mm_castps_si128, _mm_castsi128_ps, _mm_cmpgt_epi32, _mm_cmplt_ps, _mm_cvtepi32_ps,
+    _mm_cvtsi32_si128, _mm_cvtsi128_si32, _mm_cvtss_f32, _mm_cvttps_epi32, _mm_cvttss_si32,
+    _mm_max_ps, _mm_max_ss, _mm_min_ps, _mm_movehl_ps, _mm_movelh_ps, _mm_movemask_ps, _mm_mul_ps,
+    _mm_set_epi32, _mm_set_ps, _mm_set_ss, _mm_set1_epi32, _mm_set1_ps, _mm_setzero_ps,
+    _mm_setzero_si128, _mm_shuffle_epi32, _mm_shuffle_ps, _mm_slli_epi32, _mm_sqrt_ps, _mm_sqrt_ss,
+    _mm_sra_epi32, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_ps, _mm_unpacklo_ps, _mm_xor_si128,
 };
 use core::ops::{Add, Mul, Sub};
 
@@ -126,6 +125,16 @@ impl F4 {
     #[inline(always)]
     pub(crate) fn less(self, v: f32) -> I4 {
         I4(unsafe { _mm_castps_si128(_mm_cmplt_ps(self.0, _mm_set1_ps(v))) })
+    }
+
+    /// [`sum3`](Self::sum3) in lane 0 (the other lanes unspecified), to go on with lanes.
+    #[inline(always)]
+    pub(crate) fn sum3_x(self) -> F4 {
+        let v = self.0;
+        unsafe {
+            let s = _mm_add_ss(v, _mm_shuffle_ps::<0x55>(v, v));
+            F4(_mm_add_ss(s, _mm_movehl_ps(v, v)))
+        }
     }
 
     /// `(x + y) + z`, the order of a scalar three-term dot product.
@@ -245,16 +254,26 @@ impl Mul for F4 {
 }
 
 impl I4 {
-    /// All ones in lane `a < 4` where bit `a` of `bits` is set, else 0.
+    /// All ones in lane `a < 3` where bit `a` of `bits < 8` is set, else 0 (lane 3 is 0): one
+    /// read of a table.
     #[inline(always)]
     pub(crate) fn bit_masks(bits: u32) -> I4 {
-        unsafe {
-            let each = _mm_set_epi32(8, 4, 2, 1);
-            I4(_mm_cmpeq_epi32(
-                _mm_and_si128(_mm_set1_epi32(bits as i32), each),
-                each,
-            ))
-        }
+        static MASKS: [[i32; 4]; 8] = {
+            let mut t = [[0; 4]; 8];
+            let mut b = 0;
+            while b < 8 {
+                t[b] = [
+                    -((b & 1) as i32),
+                    -((b >> 1 & 1) as i32),
+                    -((b >> 2 & 1) as i32),
+                    0,
+                ];
+                b += 1;
+            }
+            t
+        };
+        let r = &MASKS[bits as usize & 7];
+        I4(unsafe { _mm_set_epi32(r[3], r[2], r[1], r[0]) })
     }
 
     /// Each lane shifted right by `s < 32`, arithmetically: `⌊c / 2^s⌋`.
@@ -371,31 +390,21 @@ pub(crate) fn sqrt1(x: f32) -> f32 {
     unsafe { _mm_cvtss_f32(_mm_sqrt_ss(_mm_max_ss(_mm_set_ss(x), _mm_setzero_ps()))) }
 }
 
-/// [`exp_neg`](crate::math::exp_neg) on each lane, every input included: 0 for NaN and at or
-/// below −87, `e^0` above 0, else `2^k · 2^r` by the same reduction and Taylor series.
+/// [`exp2_neg`](crate::math::exp2_neg) on each lane (each in `[−125, 0]`): the same
+/// operations in the same order.
 #[inline(always)]
-pub(crate) fn exp_neg(x: F4) -> F4 {
-    use core::f32::consts::{LN_2, LOG2_E};
+pub(crate) fn exp2_neg(y: F4) -> F4 {
     const MAGIC: f32 = 12_582_912.0;
-    // False for NaN, as the scalar form's `x.is_nan() || x <= -87` is true.
-    let keep = unsafe { _mm_cmpgt_ps(x.0, _mm_set1_ps(-87.0)) };
-    // `min` gives its second operand, 0, for NaN and positive lanes (and +0 for −0, which
-    // the scalar form keeps: both give exactly 1).
-    let x = F4(unsafe { _mm_min_ps(x.0, _mm_setzero_ps()) });
-    let y = x * F4::splat(LOG2_E);
     let k = (y + F4::splat(MAGIC)) - F4::splat(MAGIC);
-    let r = (y - k) * F4::splat(LN_2);
-    let c = |v: f32| F4::splat(v);
-    let p = c(1.0)
-        + r * (c(1.0)
-            + r * (c(0.5)
-                + r * (c(1.0 / 6.0)
-                    + r * (c(1.0 / 24.0) + r * (c(1.0 / 120.0) + r * c(1.0 / 720.0))))));
+    let r = y - k;
+    let c = crate::math::EXP2_POLY.map(F4::splat);
+    let r2 = r * r;
+    let p = (c[0] + c[1] * r) + r2 * ((c[2] + c[3] * r) + r2 * (c[4] + c[5] * r));
     let scale = unsafe {
         _mm_castsi128_ps(_mm_slli_epi32::<23>(_mm_add_epi32(
             _mm_cvttps_epi32(k.0),
             _mm_set1_epi32(127),
         )))
     };
-    F4(unsafe { _mm_and_ps((p * F4(scale)).0, keep) })
+    p * F4(scale)
 }

@@ -273,6 +273,40 @@ fn worley_f1_is_the_true_nearest_point() {
     }
 }
 
+#[test]
+fn smooth_voronoi_is_eq_12_within_3e7() {
+    // Eq. 12 in f64 from the same f32 point and feature points: the error of our f32
+    // distances, exponentials, sum and logarithm together. Near the origin, where the f32
+    // point is finest, and out to ±50.
+    let mut rng = Rng(12);
+    let mut worst = 0.0f64;
+    for k in 0..40_000 {
+        let half = if k % 2 == 0 { 2.0 } else { 50.0 };
+        let p = [0; 3].map(|_| (rng.unit() * 2.0 - 1.0) * half);
+        let c = p.map(|x| x.floor() as i32);
+        let mut sum = 0.0f64;
+        for dz in -1..=1 {
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let cell = [c[0] + dx, c[1] + dy, c[2] + dz];
+                    let q = feature_point3(cell, 5);
+                    let d2: f64 = (0..3)
+                        .map(|a| (p[a] as f64 - (cell[a] as f64 + q[a] as f64)).powi(2))
+                        .sum();
+                    sum += (-32.0 * d2.sqrt()).exp();
+                }
+            }
+        }
+        let err = (smooth_voronoi3(p, 5) as f64 + sum.ln() / 32.0).abs();
+        assert!(err < 3e-7, "{p:?}: error {err:e}");
+        worst = worst.max(err);
+    }
+    assert!(
+        worst > 3e-8,
+        "a bound {worst:e} this far from tight tests nothing"
+    );
+}
+
 fn hard_xis() -> [f32; 7] {
     [
         0.0,
