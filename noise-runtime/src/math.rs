@@ -148,8 +148,8 @@ impl RoundNoStd for f32 {
     }
 }
 
-/// `ln x` for `x > 0` in f32, within 2e-7 of the exact value plus half an ulp of the result; `x ≤ 0` or NaN gives `-87.0` (≈ ln of the smallest normal),
-/// infinity gives `88.7`.
+/// `ln x` for `x > 0` in f32, within 2e-7 of the exact value plus half an ulp of the result;
+/// `x ≤ 0` or NaN gives `-87.0` (≈ ln of the smallest normal), infinity gives `88.7`.
 ///
 /// `x = m · 2^e` with `m ∈ [√½, √2)` by integer steps on the bits, then `ln m = u · P(u)` for
 /// `u = m − 1`, `P` a degree-7 Chebyshev fit to `ln(1 + u)/u` evaluated in Estrin's scheme:

@@ -318,10 +318,11 @@ fn picked_distance(p: [f32; 3], seed: u32, bits: u32) -> f32 {
     ))
 }
 
-/// [`picked_distance`] on lanes, [`picked_d2_in`] and its square root: per axis `i − 1 = −1 + [f ≥ ½] + bit`, the cell's offset and
-/// the point's offset from it on lanes; only the three hash products are scalar (SSE2 has
-/// no 32-bit lane multiply). With masks of all ones for true, `−1 + [f ≥ ½]` is the mask of
-/// `f < ½` (0 or −1) and `+ bit` subtracts the bit's mask.
+/// [`picked_distance`] on lanes (the root of [`picked_d2_in`]): per axis
+/// `i − 1 = −1 + [f ≥ ½] + bit`, the cell's offset and the point's offset from it on lanes;
+/// only the three hash products are scalar (SSE2 has no 32-bit lane multiply). With masks of
+/// all ones for true, `−1 + [f ≥ ½]` is the mask of `f < ½` (0 or −1) and `+ bit` subtracts
+/// the bit's mask.
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 #[inline(always)]
 fn picked_distance_lanes(cell: crate::lanes::I4, f: F4, seed: u32, bits: u32) -> f32 {
