@@ -52,9 +52,19 @@ fn pairs() -> Vec<Pair> {
             |p, x| perlin4_stochastic([p[0], p[1], p[2], p[0] - p[1]], 3, x),
         ),
         (
+            "simplex2",
+            |p| simplex2([p[0], p[1]], 3),
+            |p, x| simplex2_stochastic([p[0], p[1]], 3, x),
+        ),
+        (
             "simplex3",
             |p| simplex3(p, 3),
             |p, x| simplex3_stochastic(p, 3, x),
+        ),
+        (
+            "simplex4",
+            |p| simplex4([p[0], p[1], p[2], p[0] - p[1]], 3),
+            |p, x| simplex4_stochastic([p[0], p[1], p[2], p[0] - p[1]], 3, x),
         ),
         (
             "fbm3",
@@ -242,6 +252,54 @@ fn perlin_gradient_matches_finite_differences() {
     }
 }
 
+/// The simplex gradients against central differences of the noise, and their values against
+/// the noise's (the module's own test checks them to second order across the faces).
+#[test]
+fn simplex_gradient_matches_finite_differences() {
+    fn check<const N: usize>(
+        name: &str,
+        p: [f32; N],
+        value: impl Fn([f32; N]) -> f32,
+        grad: impl Fn([f32; N]) -> (f32, [f32; N]),
+    ) {
+        let (v, g) = grad(p);
+        assert!(
+            (v - value(p)).abs() < 1e-6,
+            "{name} at {p:?}: {v} vs {}",
+            value(p)
+        );
+        let h = 1e-2f32;
+        for a in 0..N {
+            let (mut lo, mut hi) = (p, p);
+            lo[a] -= h;
+            hi[a] += h;
+            let fd = (value(hi) - value(lo)) / (2.0 * h);
+            assert!(
+                (fd - g[a]).abs() < 0.02 * (1.0 + g[a].abs()),
+                "{name} axis {a} at {p:?}: fd {fd} vs {}",
+                g[a]
+            );
+        }
+    }
+    let mut rng = Rng(10);
+    for _ in 0..300 {
+        let p: [f32; 4] = std::array::from_fn(|_| rng.unit() * 20.0 - 10.0);
+        check(
+            "simplex2",
+            [p[0], p[1]],
+            |q| simplex2(q, 1),
+            |q| simplex2_grad(q, 1),
+        );
+        check(
+            "simplex3",
+            [p[0], p[1], p[2]],
+            |q| simplex3(q, 1),
+            |q| simplex3_grad(q, 1),
+        );
+        check("simplex4", p, |q| simplex4(q, 1), |q| simplex4_grad(q, 1));
+    }
+}
+
 #[test]
 fn worley_f1_is_the_true_nearest_point() {
     // Brute force over a 5×5×5 block of cells: the pruned 27-cell search must agree.
@@ -358,8 +416,15 @@ fn hard_cases_are_finite() {
                 perlin4([c, 1.5, c, 0.2], 1),
                 perlin4_stochastic([c, 1.5, c, 0.2], 1, x),
                 perlin4_grad([c, 1.5, c, 0.2], 1).0,
+                simplex2([c, 0.3], 1),
+                simplex2_stochastic([c, 0.3], 1, x),
+                simplex2_grad([c, 0.3], 1).0,
                 simplex3(p, 1),
                 simplex3_stochastic(p, 1, x),
+                simplex3_grad(p, 1).0,
+                simplex4([c, 1.5, c, 0.2], 1),
+                simplex4_stochastic([c, 1.5, c, 0.2], 1, x),
+                simplex4_grad([c, 1.5, c, 0.2], 1).0,
                 sparse_conv3(p, 10, 1),
                 sparse_conv3_stochastic(p, 10, 1, x),
                 sparse_conv3_stochastic1(p, 10, 1, x),
@@ -372,6 +437,9 @@ fn hard_cases_are_finite() {
             ];
             vals.extend(perlin3_grad(p, 1).1);
             vals.extend(perlin4_grad([c, 1.5, c, 0.2], 1).1);
+            vals.extend(simplex2_grad([c, 0.3], 1).1);
+            vals.extend(simplex3_grad(p, 1).1);
+            vals.extend(simplex4_grad([c, 1.5, c, 0.2], 1).1);
             for f in fracs {
                 vals.push(fbm3(p, f, 1));
                 vals.push(fbm3_stochastic(p, f, 1, x));
@@ -412,7 +480,9 @@ proptest! {
         let f = Fractal::new(oct, lac, gain);
         for v in [
             perlin3_stochastic(p, 2, xi),
+            simplex2_stochastic([x, y], 2, xi),
             simplex3_stochastic(p, 2, xi),
+            simplex4_stochastic([x, y, z, x - z], 2, xi),
             fbm3(p, f, 2),
             fbm3_stochastic(p, f, 2, xi),
             fbm_sparse_conv3_stochastic(p, f, 3, 2, xi),

@@ -88,9 +88,23 @@ fn functions() -> Vec<(&'static str, Det, Option<Sto>)> {
             })),
         ),
         (
+            "simplex2",
+            Box::new(|p: [f32; 3]| simplex2([p[0], p[1]], 1)),
+            Some(Box::new(|p: [f32; 3], x| {
+                simplex2_stochastic([p[0], p[1]], 1, x)
+            })),
+        ),
+        (
             "simplex3",
             Box::new(|p| simplex3(p, 1)),
             Some(Box::new(|p, x| simplex3_stochastic(p, 1, x))),
+        ),
+        (
+            "simplex4",
+            Box::new(|p: [f32; 3]| simplex4([p[0], p[1], p[2], p[0] + p[2]], 1)),
+            Some(Box::new(|p: [f32; 3], x| {
+                simplex4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x)
+            })),
         ),
         (
             "fbm3",
@@ -377,7 +391,10 @@ pub fn run_with(timed: usize) -> Vec<Row> {
         "perlin3": |p, x| perlin3(p, 1), perlin3_stochastic(p, 1, x);
         "perlin4": |p, x| perlin4([p[0], p[1], p[2], p[0] + p[2]], 1),
             perlin4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x);
+        "simplex2": |p, x| simplex2([p[0], p[1]], 1), simplex2_stochastic([p[0], p[1]], 1, x);
         "simplex3": |p, x| simplex3(p, 1), simplex3_stochastic(p, 1, x);
+        "simplex4": |p, x| simplex4([p[0], p[1], p[2], p[0] + p[2]], 1),
+            simplex4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x);
         "fbm3": |p, x| fbm3(p, fbm, 1), fbm3_stochastic(p, fbm, 1, x);
         "sparse_conv3": |p, x| sparse_conv3(p, 10, 1), sparse_conv3_stochastic(p, 10, 1, x);
         "fbm_sparse_conv3": |p, x| fbm_sparse_conv3(p, fbm, 10, 1),

@@ -72,7 +72,10 @@ pub use perlin::{
     perlin2, perlin2_grad, perlin2_stochastic, perlin3, perlin3_grad, perlin3_grad_cell,
     perlin3_stochastic, perlin4, perlin4_grad, perlin4_stochastic,
 };
-pub use simplex::{simplex3, simplex3_stochastic};
+pub use simplex::{
+    simplex2, simplex2_grad, simplex2_stochastic, simplex3, simplex3_grad, simplex3_stochastic,
+    simplex4, simplex4_grad, simplex4_stochastic,
+};
 pub use sparse::{
     fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_stochastic1, sparse_conv3,
     sparse_conv3_stochastic, sparse_conv3_stochastic1,

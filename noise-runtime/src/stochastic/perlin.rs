@@ -87,6 +87,12 @@ fn g4(h: u32) -> [f32; 4] {
     GRAD4.0[(h >> 27) as usize]
 }
 
+/// Gradient `i` (of 32, taken modulo 32) of the tesseract's edge set, for 4D simplex noise.
+#[inline(always)]
+pub(super) fn tesseract_gradient(i: u32) -> [f32; 4] {
+    GRAD4.0[(i & 31) as usize]
+}
+
 /// 2D Perlin noise, about `[-1, 1]`.
 #[inline(always)]
 pub fn perlin2(p: [f32; 2], seed: u32) -> f32 {

@@ -1,22 +1,33 @@
-//! 3D simplex noise (Perlin 2001) and its one-sample estimator. Simplex noise is a weighted sum
-//! over the 4 corners of the simplex holding the point, with weights `(½ − r²)⁴ ≥ 0`; the
-//! estimator picks one corner with probability proportional to its weight (eq. 1 with
-//! importance sampling) and evaluates only that corner's gradient.
+//! Simplex noise (Perlin 2001) in 2D, 3D and 4D, its analytic gradient and its one-sample
+//! estimator. Simplex noise is a weighted sum over the `N + 1` corners of the simplex holding
+//! the point, with weights `(½ − r²)⁴ ≥ 0`; the estimator picks one corner with probability
+//! proportional to its weight (eq. 1 with importance sampling) and evaluates only that
+//! corner's gradient.
 //!
-//! Both are free of branches on the point: which simplex holds it comes from the ranks of its
-//! offsets, a weight's support from a `max`, the gradient from a table, and the estimator's
-//! corner from a count of compares. On random points the first form's branches (the simplex's
-//! six cases, a corner's support, the gradient's cases) mispredicted several times a call.
+//! The 3D pair is free of branches on the point: which simplex holds it comes from the ranks
+//! of its offsets, a weight's support from a `max`, the gradient from a table, and the
+//! estimator's corner from a count of compares. On random points the first form's branches
+//! (the simplex's six cases, a corner's support, the gradient's cases) mispredicted several
+//! times a call. The 2D and 4D forms and the gradients share the same steps, written once for
+//! any dimension in [`lattice`].
 
 use super::estimators::sanitize_xi;
 use super::hash::hash3;
+use super::hash::{hash2, hash4};
 use crate::math::split;
+use lattice::{Corners, Skew};
 
+mod lattice;
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 mod sse;
 
 const G3: f32 = 1.0 / 6.0;
-const SCALE: f32 = 32.0;
+/// Scale of 3D simplex noise, so that it lies in `[-1, 1]`. The largest value any point can
+/// take is below `B = max Σ_k t_k⁴ |d_k| |g|` over the simplex (each gradient turned towards
+/// its offset); searched numerically, `1/B` is 99.20 in 2D (unit gradients), 76.12 in 3D
+/// (`|g| = √2`) and 62.68 in 4D (`|g| = √3`), and the scales are these rounded down. (An
+/// earlier 3D scale of 32, Gustavson's for a radius² of 0.6, left the noise in ±0.42.)
+const SCALE: f32 = 76.0;
 
 /// The simplex corners of `p`: lattice cell and offsets of each corner.
 #[inline(always)]
@@ -122,7 +133,7 @@ fn grad_dot(c: [i32; 3], d: [f32; 3], seed: u32) -> f32 {
     g[0] * d[0] + g[1] * d[1] + g[2] * d[2]
 }
 
-/// 3D simplex noise, about `[-1, 1]`.
+/// 3D simplex noise, in `[-1, 1]`.
 #[inline(always)]
 pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
@@ -178,9 +189,108 @@ fn simplex3_stochastic_scalar(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     SCALE * total * grad_dot(c[k & 3], d[k & 3], seed)
 }
 
+/// The skews of the 2D, 3D and 4D lattices (see [`Skew`]).
+const SKEW2: Skew = Skew {
+    skew: 0.366_025_42,
+    unskew: 0.211_324_87,
+};
+const SKEW3: Skew = Skew {
+    skew: 1.0 / 3.0,
+    unskew: G3,
+};
+const SKEW4: Skew = Skew {
+    skew: 0.309_017,
+    unskew: 0.138_196_6,
+};
+
+/// 2D gradients: 16 unit vectors at the angles `(k + ½)·22.5°`, so that no direction of the
+/// plane is favoured (the axes-and-diagonals set of [`perlin2`](super::perlin2) mixes lengths
+/// 1 and √2).
+static GRAD2: [[f32; 2]; 16] = {
+    const A: [f32; 4] = [0.980_785_3, 0.831_469_6, 0.555_570_24, 0.195_090_32];
+    let mut g = [[0.0f32; 2]; 16];
+    let mut k = 0;
+    while k < 4 {
+        let (c, s) = (A[k], A[3 - k]);
+        g[k] = [c, s];
+        g[k + 4] = [-s, c];
+        g[k + 8] = [-c, -s];
+        g[k + 12] = [s, -c];
+        k += 1;
+    }
+    g
+};
+
+/// Scale of 2D simplex noise, `[-1, 1]`: see [`SCALE`].
+const SCALE2: f32 = 99.0;
+/// Scale of 4D simplex noise, `[-1, 1]`: see [`SCALE`].
+const SCALE4: f32 = 62.0;
+
+#[inline(always)]
+fn grad2(c: [i32; 2], seed: u32) -> [f32; 2] {
+    GRAD2[(hash2(c[0], c[1], seed) >> 28) as usize]
+}
+
+#[inline(always)]
+fn grad3(c: [i32; 3], seed: u32) -> [f32; 3] {
+    GRAD[(hash3(c[0], c[1], c[2], seed) >> 28) as usize]
+}
+
+#[inline(always)]
+fn grad4(c: [i32; 4], seed: u32) -> [f32; 4] {
+    super::perlin::tesseract_gradient(hash4(c[0], c[1], c[2], c[3], seed) >> 27)
+}
+
+/// 2D simplex noise, in `[-1, 1]`: three corners instead of [`perlin2`](super::perlin2)'s four.
+#[inline]
+pub fn simplex2(p: [f32; 2], seed: u32) -> f32 {
+    Corners::<2, 3>::new(p, SKEW2).value(SCALE2, |c| grad2(c, seed))
+}
+
+/// 2D simplex noise and its analytic gradient `(∂n/∂x, ∂n/∂y)`.
+#[inline]
+pub fn simplex2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
+    Corners::<2, 3>::new(p, SKEW2).value_grad(SCALE2, |c| grad2(c, seed))
+}
+
+/// One-sample estimator of [`simplex2`]: one gradient of three, chosen with probability ∝ its
+/// weight. Choosing needs all three weights, so on a CPU it saves only two hashes and dot
+/// products; it is here for completeness and for fractal sums.
+#[inline]
+pub fn simplex2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
+    Corners::<2, 3>::new(p, SKEW2).stochastic(SCALE2, xi, |c| grad2(c, seed))
+}
+
+/// 3D simplex noise and its analytic gradient. The value is [`simplex3`]'s (the same
+/// operations in the same order).
+#[inline]
+pub fn simplex3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
+    Corners::<3, 4>::new(p, SKEW3).value_grad(SCALE, |c| grad3(c, seed))
+}
+
+/// 4D simplex noise, in `[-1, 1]`: five corners instead of [`perlin4`](super::perlin4)'s 16.
+#[inline]
+pub fn simplex4(p: [f32; 4], seed: u32) -> f32 {
+    Corners::<4, 5>::new(p, SKEW4).value(SCALE4, |c| grad4(c, seed))
+}
+
+/// 4D simplex noise and its analytic gradient.
+#[inline]
+pub fn simplex4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
+    Corners::<4, 5>::new(p, SKEW4).value_grad(SCALE4, |c| grad4(c, seed))
+}
+
+/// One-sample estimator of [`simplex4`]: one gradient of five, chosen with probability ∝ its
+/// weight.
+#[inline]
+pub fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
+    Corners::<4, 5>::new(p, SKEW4).stochastic(SCALE4, xi, |c| grad4(c, seed))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::stochastic::ONE_BELOW;
 
     /// The plain form: the simplex by its six cases, a corner's support by a test, the
     /// gradient by Perlin's reference cases, the corner by a linear search (which asserts
@@ -284,5 +394,128 @@ mod tests {
                 "{p:?}, ξ {xi}"
             );
         }
+    }
+
+    /// The general lattice finds the 3D simplex the specialised one finds: the same lattice
+    /// points and the same offsets, and so [`simplex3_grad`]'s value is [`simplex3`]'s.
+    #[test]
+    fn general_lattice_is_the_3d_one() {
+        let mut next = super::super::uniforms(0x6a09_e667_f3bc_c908);
+        for i in 0..50_000 {
+            let p = if i < 40_000 {
+                [0; 3].map(|_| next() * 64.0 - 32.0)
+            } else {
+                // Ties between offsets: the diagonal and the cell's faces.
+                let (t, u) = ((i / 5) as f32 / 97.0 - 30.0, next() * 8.0);
+                [[t, t, t], [t, t, u], [t, u, t], [u, t, t], [t, -t, 0.5 * t]][i % 5]
+            };
+            let (c, d) = corners(p);
+            let g = Corners::<3, 4>::new(p, SKEW3);
+            assert_eq!(c, g.cell, "{p:?}");
+            assert_eq!(d, g.d, "{p:?}");
+            assert_eq!(simplex3_grad(p, 9).0, simplex3(p, 9), "{p:?}");
+        }
+    }
+
+    /// Random short steps, many across a face of the simplices: the change of the value is
+    /// its gradient times the step to second order. A kernel reaching past the neighbouring
+    /// faces (radius² 0.6, Gustavson's in 3D and 4D) breaks this by jumps of about 10⁻³ at
+    /// the faces, ten times the bound (checked by making the change); so does a gradient
+    /// formula that is wrong anywhere.
+    #[test]
+    fn noise_is_smooth_across_simplex_faces_and_the_gradient_is_its_derivative() {
+        fn check<const N: usize, const M: usize>(
+            name: &str,
+            k: Skew,
+            f: impl Fn([f32; N]) -> (f32, [f32; N]),
+        ) {
+            let mut next = super::super::uniforms(0xbb67_ae85_84ca_a73b ^ N as u64);
+            let (h, mut crossed) = (2e-3f32, 0);
+            for _ in 0..400_000 {
+                let p: [f32; N] = core::array::from_fn(|_| next() * 16.0 - 8.0);
+                let v: [f32; N] = core::array::from_fn(|_| next() - 0.5);
+                let q: [f32; N] = core::array::from_fn(|a| p[a] + h * v[a]);
+                let ((a, g), (b, _)) = (f(p), f(q));
+                let linear: f32 = (0..N).map(|i| g[i] * (q[i] - p[i])).sum();
+                // The second-order remainder: at most about 15h² measured in each dimension;
+                // the bound allows 30h² and the f32 rounding of two values near 1.
+                assert!(
+                    (b - a - linear).abs() <= 30.0 * h * h + 1e-5,
+                    "{name} from {p:?} to {q:?}: {a} → {b}, gradient step {linear}"
+                );
+                crossed +=
+                    (Corners::<N, M>::new(p, k).cell != Corners::<N, M>::new(q, k).cell) as u32;
+            }
+            assert!(crossed > 500, "{name}: only {crossed} steps crossed a face");
+        }
+        check::<2, 3>("2D", SKEW2, |p| simplex2_grad(p, 4));
+        check::<3, 4>("3D", SKEW3, |p| simplex3_grad(p, 4));
+        check::<4, 5>("4D", SKEW4, |p| simplex4_grad(p, 4));
+    }
+
+    /// The scales put every dimension in `[-1, 1]` and use most of it.
+    #[test]
+    fn values_lie_in_the_unit_interval_and_fill_most_of_it() {
+        let mut next = super::super::uniforms(0x3c6e_f372_fe94_f82b);
+        let mut max = [0.0f32; 3];
+        for i in 0..300_000u32 {
+            let p: [f32; 4] = core::array::from_fn(|_| next() * 200.0 - 100.0);
+            let seed = i % 5;
+            let v = [
+                simplex2([p[0], p[1]], seed),
+                simplex3([p[0], p[1], p[2]], seed),
+                simplex4(p, seed),
+            ];
+            for (m, v) in max.iter_mut().zip(v) {
+                assert!(v.abs() <= 1.0, "{v} at {p:?}");
+                *m = m.max(v.abs());
+            }
+        }
+        assert!(max.iter().all(|&m| m > 0.75), "largest values {max:?}");
+    }
+
+    /// The estimators never pick a corner of weight 0, at any ξ, also where only one corner
+    /// has weight (at a lattice point) and where all do.
+    #[test]
+    fn estimators_pick_only_corners_with_weight() {
+        let xis = [0.0, 1e-30, 0.5, ONE_BELOW, 1.0, 2.0, -1.0, f32::NAN];
+        for p in [
+            [0.0f32; 4],
+            [3.0, -2.0, 7.0, 1.0],
+            [0.1, 0.2, 0.3, 0.4],
+            [1e7; 4],
+        ] {
+            for &xi in &xis {
+                let c = Corners::<4, 5>::new(p, SKEW4);
+                let v = simplex4_stochastic(p, 2, xi);
+                // A zero-weight corner would give a finite but wrong value; here every value
+                // is one of the weighted corners' terms.
+                let total: f32 =
+                    c.d.iter()
+                        .map(|d| {
+                            (0.5 - d.iter().map(|x| x * x).sum::<f32>())
+                                .max(0.0)
+                                .powi(4)
+                        })
+                        .sum();
+                let terms: [Option<f32>; 5] = core::array::from_fn(|k| {
+                    let r2: f32 = c.d[k].iter().map(|x| x * x).sum();
+                    (r2 < 0.5).then(|| SCALE4 * total * lattice_dot(grad4(c.cell[k], 2), c.d[k]))
+                });
+                assert!(
+                    terms
+                        .iter()
+                        .flatten()
+                        .any(|t| (t - v).abs() <= 1e-6 * (1.0 + t.abs()))
+                        || total == 0.0,
+                    "{p:?} ξ {xi}: {v} not among {terms:?}"
+                );
+                assert!(simplex2_stochastic([p[0], p[1]], 2, xi).is_finite());
+            }
+        }
+    }
+
+    fn lattice_dot<const N: usize>(g: [f32; N], d: [f32; N]) -> f32 {
+        (0..N).map(|a| g[a] * d[a]).sum()
     }
 }
