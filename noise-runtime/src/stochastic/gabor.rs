@@ -331,21 +331,27 @@ fn estimate(
     }
     let idx: [u32; 27] =
         core::array::from_fn(|c| importance_index(rotate(xi, r.hash[c]), n[c].max(1)));
-    // The sampled impulses inside the kernel's support, compacted without a branch (whether an
-    // impulse is inside is a coin flip per cell, which a branch would mispredict half the time);
-    // only they pay for the orientation, the exponential and the cosine.
-    let mut live = [(0u32, 0u32, [0.0f32; 3], 0.0f32, 0.0f32); 27];
+    // The cells whose sampled impulse lies inside the kernel's support, compacted without a
+    // branch (whether an impulse is inside is a coin flip per cell, which a branch would
+    // mispredict half the time); only they pay for the orientation, the exponential and the
+    // cosine. A cell is kept as its number alone and its impulse found again when read: for
+    // the four or so inside, that costs less than storing every cell's offset and weight.
+    let mut live = [0u8; 27];
     let mut m = 0;
     for (c, (h, d)) in r.iter().enumerate() {
+        let (q, _) = impulse(h, idx[c]);
+        let x = [d[0] - q[0], d[1] - q[1], d[2] - q[2]];
+        live[m] = c as u8;
+        m += (x[0] * x[0] + x[1] * x[1] + x[2] * x[2] < 1.0) as usize;
+    }
+    let mut sum = 0.0;
+    for &c in &live[..m] {
+        let c = c as usize;
+        let (h, d) = (r.hash[c], r.offset(c));
         let (q, sign) = impulse(h, idx[c]);
         let x = [d[0] - q[0], d[1] - q[1], d[2] - q[2]];
         let r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
-        live[m] = (h, idx[c], x, r2, flip(0.5 * n[c] as f32, sign));
-        m += (r2 < 1.0) as usize;
-    }
-    let mut sum = 0.0;
-    for &(h, i, x, r2, w) in &live[..m] {
-        sum += w * kernel_at(h, i, x, r2, f0);
+        sum += flip(0.5 * n[c] as f32, sign) * kernel_at(h, idx[c], x, r2, f0);
     }
     sum
 }

@@ -153,6 +153,14 @@ impl Reach {
         r
     }
 
+    /// The offset of `p` from the corner of reachable cell `c` (`c < count`), as [`Reach::iter`]
+    /// gives it.
+    #[inline(always)]
+    pub(crate) fn offset(&self, c: usize) -> [f32; 3] {
+        let b = BLOCK_CELL[self.block[c % 27] as usize & 31];
+        [self.f1[0] - b[0], self.f1[1] - b[1], self.f1[2] - b[2]]
+    }
+
     /// The reachable cells as `(hash, offset of p from the cell's corner)`.
     #[inline(always)]
     pub(crate) fn iter(&self) -> impl Iterator<Item = (u32, [f32; 3])> + '_ {
