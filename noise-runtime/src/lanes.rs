@@ -254,6 +254,39 @@ impl Mul for F4 {
 }
 
 impl I4 {
+    /// The lanes of four integers.
+    #[inline(always)]
+    pub(crate) fn new(v: [u32; 4]) -> I4 {
+        I4(unsafe { _mm_set_epi32(v[3] as i32, v[2] as i32, v[1] as i32, v[0] as i32) })
+    }
+
+    /// All ones in each lane greater than `v` (as signed integers), else 0.
+    #[inline(always)]
+    pub(crate) fn greater(self, v: i32) -> I4 {
+        I4(unsafe { _mm_cmpgt_epi32(self.0, _mm_set1_epi32(v)) })
+    }
+
+    /// `self & o` per lane.
+    #[inline(always)]
+    pub(crate) fn and(self, o: I4) -> I4 {
+        I4(unsafe { _mm_and_si128(self.0, o.0) })
+    }
+
+    /// 1.0 in each lane of the mask `self` that is all ones, 0.0 where it is 0.
+    #[inline(always)]
+    pub(crate) fn ones(self) -> F4 {
+        F4(unsafe { _mm_and_ps(_mm_castsi128_ps(self.0), _mm_set1_ps(1.0)) })
+    }
+
+    /// The xor of the four lanes.
+    #[inline(always)]
+    pub(crate) fn xor_lanes(self) -> u32 {
+        unsafe {
+            let v = _mm_xor_si128(self.0, _mm_shuffle_epi32::<0b01_00_11_10>(self.0));
+            _mm_cvtsi128_si32(_mm_xor_si128(v, _mm_shuffle_epi32::<0b10_11_00_01>(v))) as u32
+        }
+    }
+
     /// All ones in lane `a < 3` where bit `a` of `bits < 8` is set, else 0 (lane 3 is 0): one
     /// read of a table.
     #[inline(always)]

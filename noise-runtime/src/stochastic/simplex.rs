@@ -13,7 +13,7 @@
 
 use super::estimators::sanitize_xi;
 use super::hash::hash3;
-use super::hash::{hash2, hash4};
+use super::hash::{CORNER_MUL, PRIME};
 use crate::math::split;
 use lattice::{Corners, Skew};
 
@@ -226,9 +226,23 @@ const SCALE2: f32 = 99.0;
 /// Scale of 4D simplex noise, `[-1, 1]`: see [`SCALE`].
 const SCALE4: f32 = 62.0;
 
+/// The hash of lattice point `c` for the 2D and 4D gradients: the xor of the coordinates'
+/// axis products with the seed, times one odd constant ([`corner`](super::hash::corner)'s
+/// form; use its top bits). One multiply per axis, all side by side, and one after, where
+/// [`hash2`](super::hash::hash2)'s finishing rounds would add two more multiplies to the
+/// chain from the point to its value.
+#[inline(always)]
+fn lattice_hash<const N: usize>(c: [i32; N], seed: u32) -> u32 {
+    let mut h = seed;
+    for a in 0..N {
+        h ^= (c[a] as u32).wrapping_mul(PRIME[a]);
+    }
+    h.wrapping_mul(CORNER_MUL)
+}
+
 #[inline(always)]
 fn grad2(c: [i32; 2], seed: u32) -> [f32; 2] {
-    GRAD2[(hash2(c[0], c[1], seed) >> 28) as usize]
+    GRAD2[(lattice_hash(c, seed) >> 28) as usize]
 }
 
 #[inline(always)]
@@ -238,7 +252,7 @@ fn grad3(c: [i32; 3], seed: u32) -> [f32; 3] {
 
 #[inline(always)]
 fn grad4(c: [i32; 4], seed: u32) -> [f32; 4] {
-    super::perlin::tesseract_gradient(hash4(c[0], c[1], c[2], c[3], seed) >> 27)
+    super::perlin::tesseract_gradient(lattice_hash(c, seed) >> 27)
 }
 
 /// 2D simplex noise, in `[-1, 1]`: three corners instead of [`perlin2`](super::perlin2)'s four.
@@ -271,6 +285,17 @@ pub fn simplex3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
 /// 4D simplex noise, in `[-1, 1]`: five corners instead of [`perlin4`](super::perlin4)'s 16.
 #[inline]
 pub fn simplex4(p: [f32; 4], seed: u32) -> f32 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    if let Some(v) = sse::simplex4(p, seed) {
+        return v;
+    }
+    simplex4_scalar(p, seed)
+}
+
+/// [`simplex4`] in scalar code: the form off x86_64, and for skewed points out of the split
+/// range there.
+#[inline(always)]
+fn simplex4_scalar(p: [f32; 4], seed: u32) -> f32 {
     Corners::<4, 5>::new(p, SKEW4).value(SCALE4, |c| grad4(c, seed))
 }
 
@@ -284,6 +309,16 @@ pub fn simplex4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 /// weight.
 #[inline]
 pub fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    if let Some(v) = sse::simplex4_stochastic(p, seed, xi) {
+        return v;
+    }
+    simplex4_stochastic_scalar(p, seed, xi)
+}
+
+/// [`simplex4_stochastic`] in scalar code (see [`simplex4_scalar`]).
+#[inline(always)]
+fn simplex4_stochastic_scalar(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     Corners::<4, 5>::new(p, SKEW4).stochastic(SCALE4, xi, |c| grad4(c, seed))
 }
 

@@ -41,11 +41,7 @@ impl<const N: usize, const M: usize> Corners<N, M> {
     #[inline(always)]
     pub(super) fn new(p: [f32; N], k: Skew) -> Self {
         const { assert!(M == N + 1) };
-        let mut sum = 0.0;
-        for c in p {
-            sum += c;
-        }
-        let s = sum * k.skew;
+        let s = sum(p) * k.skew;
         let q = p.map(|c| c + s);
         // One predictable branch buys the short split for every ordinary coordinate.
         if in_split_range(q) {
@@ -62,11 +58,7 @@ impl<const N: usize, const M: usize> Corners<N, M> {
         for a in 0..N {
             (base[a], f[a]) = sp(q[a]);
         }
-        let mut sum = 0.0;
-        for v in f {
-            sum += v;
-        }
-        let t = sum * g;
+        let t = sum(f) * g;
         let d0 = f.map(|v| v - t);
         // The path from the cell's origin through the simplex steps along the axes from the
         // largest offset down. Axis `a`'s rank is the number of other offsets it is at least
@@ -74,12 +66,10 @@ impl<const N: usize, const M: usize> Corners<N, M> {
         // corner `k` has stepped along axis `a` when `rank[a] ≥ N − k`.
         let mut rank = [0usize; N];
         for a in 0..N {
-            for b in 0..N {
-                rank[a] += match b.cmp(&a) {
-                    core::cmp::Ordering::Greater => (d0[a] >= d0[b]) as usize,
-                    core::cmp::Ordering::Less => (d0[a] > d0[b]) as usize,
-                    core::cmp::Ordering::Equal => 0,
-                };
+            for b in a + 1..N {
+                let ge = (d0[a] >= d0[b]) as usize;
+                rank[a] += ge;
+                rank[b] += 1 - ge;
             }
         }
         let mut cell = [[0i32; N]; M];
@@ -98,13 +88,7 @@ impl<const N: usize, const M: usize> Corners<N, M> {
     /// Each corner's `t = max(½ − r², 0)`; its weight is `t⁴`.
     #[inline(always)]
     fn support(&self) -> [f32; M] {
-        self.d.map(|d| {
-            let mut r2 = 0.0;
-            for v in d {
-                r2 += v * v;
-            }
-            (0.5 - r2).max(0.0)
-        })
+        self.d.map(|d| (0.5 - sum(d.map(|v| v * v))).max(0.0))
     }
 
     /// `scale · Σ_k t_k⁴ (g_k · d_k)`, with `grad` giving a lattice point's gradient.
@@ -174,11 +158,26 @@ impl<const N: usize, const M: usize> Corners<N, M> {
     }
 }
 
+/// `g · d`.
 #[inline(always)]
 fn dot<const N: usize>(g: [f32; N], d: [f32; N]) -> f32 {
-    let mut s = 0.0;
-    for a in 0..N {
-        s += g[a] * d[a];
+    sum::<N>(core::array::from_fn(|a| g[a] * d[a]))
+}
+
+/// `Σ v`: from the first term on in 2D and 3D (the order of the 3D forms), in pairs in 4D,
+/// `(v₀ + v₁) + (v₂ + v₃)`, the order of a four-lane sum ([`F4::sum4`]), so that the 4D lane
+/// forms are bit for bit these.
+///
+/// [`F4::sum4`]: crate::lanes
+#[inline(always)]
+pub(super) fn sum<const N: usize>(v: [f32; N]) -> f32 {
+    if N == 4 {
+        (v[0] + v[1]) + (v[2] + v[3])
+    } else {
+        let mut s = v[0];
+        for &x in &v[1..] {
+            s += x;
+        }
+        s
     }
-    s
 }

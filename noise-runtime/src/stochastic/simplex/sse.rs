@@ -1,13 +1,13 @@
-//! [`simplex3`](super::simplex3) and its estimator on SSE2 lanes
-//! (the [`crate::lanes`] module), for skewed points in the split range: the split as one
-//! register, the four corners' squared distances, weights and gradient dot products each as
-//! one register (by transposes). Bit for bit the scalar forms, which remain the code on other
-//! targets; the tests compare the two.
+//! [`simplex3`](super::simplex3), [`simplex4`](super::simplex4) and their estimators on SSE2
+//! lanes (the [`crate::lanes`] module), for skewed points in the split range: the split as one
+//! register, the corners' squared distances, weights and gradient dot products as registers
+//! (by transposes). Bit for bit the scalar forms, which remain the code on other targets; the
+//! tests compare the two.
 
-use super::{G3, GRAD, SCALE, rank_order};
-use crate::lanes::{self, F4};
+use super::{G3, GRAD, SCALE, SCALE4, SKEW4, rank_order};
+use crate::lanes::{self, F4, I4};
 use crate::stochastic::estimators::{sanitize_xi, unit_corner};
-use crate::stochastic::hash::hash3;
+use crate::stochastic::hash::{CORNER_MUL, PRIME, hash3};
 
 /// [`GRAD`] padded to four lanes, so that a row is one load.
 static GRAD_ROWS: [[f32; 4]; 16] = {
@@ -87,9 +87,109 @@ pub(super) fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> Option<f32
     Some(SCALE * total * (grad(c[k], seed) * d[k]).sum3())
 }
 
+/// The five corners of the 4D simplex holding a point: per corner, the hash of its lattice
+/// point before the finishing multiply and the point's offset from it.
+struct Corners4 {
+    h: [u32; 5],
+    d: [F4; 5],
+}
+
+impl Corners4 {
+    /// The corners of `p`, as `lattice::Corners::<4, 5>` finds them, or `None` when the
+    /// skewed point leaves the split range.
+    #[inline(always)]
+    fn new(p: [f32; 4], seed: u32) -> Option<Self> {
+        let v = F4::from4(p);
+        let q = v + F4::splat(v.sum4() * SKEW4.skew);
+        if !lanes::in_split_range(q) {
+            return None;
+        }
+        let (cell, f) = lanes::split_in_range(q);
+        let g = SKEW4.unskew;
+        let d0 = f - F4::splat(f.sum4() * g);
+        let e = [d0.x(), d0.y(), d0.z(), d0.w()];
+        let mut rank = [0u32; 4];
+        for a in 0..4 {
+            for b in a + 1..4 {
+                let ge = (e[a] >= e[b]) as u32;
+                rank[a] += ge;
+                rank[b] += 1 - ge;
+            }
+        }
+        // A lattice point's hash is the xor of its axis products: the lower side's `base·P`,
+        // or on the upper side `base·P + P`, so corner `k` adds `P` on the axes it has
+        // stepped along, those with `rank + k ≥ 4`: one compare of the four ranks at once.
+        let base = cell.xyzw();
+        let lo = I4::new(core::array::from_fn(|a| base[a].wrapping_mul(PRIME[a])));
+        let (rank, primes) = (I4::new(rank), I4::new(PRIME));
+        let corner = |k: i32| {
+            let up = rank.greater(3 - k);
+            let h = seed ^ (lo + primes.and(up)).xor_lanes();
+            (h, (d0 - up.ones()) + F4::splat(k as f32 * g))
+        };
+        // Spelled out: as `[0, 1, 2, 3, 4].map(corner)` LLVM called the closure per corner.
+        let [c1, c2, c3, c4] = [corner(1), corner(2), corner(3), corner(4)];
+        Some(Corners4 {
+            h: [seed ^ lo.xor_lanes(), c1.0, c2.0, c3.0, c4.0],
+            d: [d0, c1.1, c2.1, c3.1, c4.1],
+        })
+    }
+
+    /// Corners 0–3's weights `t⁴`, `t = max(½ − r², 0)`, and corner 4's.
+    #[inline(always)]
+    fn weights(&self) -> (F4, f32) {
+        let d = &self.d;
+        let r2 = F4::sums4([d[0] * d[0], d[1] * d[1], d[2] * d[2], d[3] * d[3]]);
+        let t = (F4::splat(0.5) - r2).max(F4::splat(0.0));
+        let t4 = (0.5 - (d[4] * d[4]).sum4()).max(0.0);
+        ((t * t) * (t * t), (t4 * t4) * (t4 * t4))
+    }
+
+    /// The gradient row of corner `k`.
+    #[inline(always)]
+    fn grad(&self, k: usize) -> F4 {
+        let h = self.h[k].wrapping_mul(CORNER_MUL);
+        F4::new(&super::super::perlin::tesseract_gradient(h >> 27))
+    }
+}
+
+/// [`simplex4`](super::simplex4), or `None` when the skewed point leaves the split range.
+#[inline(always)]
+pub(super) fn simplex4(p: [f32; 4], seed: u32) -> Option<f32> {
+    let c = Corners4::new(p, seed)?;
+    let (w, w4) = c.weights();
+    let dot = |k: usize| c.grad(k) * c.d[k];
+    let v = w * F4::sums4([dot(0), dot(1), dot(2), dot(3)]);
+    let last = w4 * (c.grad(4) * c.d[4]).sum4();
+    // The scalar form's running sum, from 0.0.
+    Some(SCALE4 * (((((0.0 + v.x()) + v.y()) + v.z()) + v.w()) + last))
+}
+
+/// [`simplex4_stochastic`](super::simplex4_stochastic), or `None` when the skewed point
+/// leaves the split range.
+#[inline(always)]
+pub(super) fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> Option<f32> {
+    let c = Corners4::new(p, seed)?;
+    let (w, w4) = c.weights();
+    let e0 = 0.0 + w.x();
+    let e1 = e0 + w.y();
+    let e2 = e1 + w.z();
+    let e3 = e2 + w.w();
+    let total = e3 + w4;
+    if total <= 0.0 {
+        return Some(0.0);
+    }
+    let target = (sanitize_xi(xi) * total).min(f32::from_bits(total.to_bits() - 1));
+    let k = [e0, e1, e2, e3].map(|e| (target >= e) as usize);
+    let k = (k[0] + k[1] + k[2] + k[3]).min(4);
+    Some(SCALE4 * total * (c.grad(k) * c.d[k]).sum4())
+}
+
 #[cfg(test)]
 mod tests {
-    use super::super::{simplex3_scalar, simplex3_stochastic_scalar};
+    use super::super::{
+        simplex3_scalar, simplex3_stochastic_scalar, simplex4_scalar, simplex4_stochastic_scalar,
+    };
     use crate::stochastic::estimators::ONE_BELOW;
 
     #[test]
@@ -130,5 +230,51 @@ mod tests {
             }
         }
         assert!(compared > 190_000, "{compared}");
+    }
+
+    #[test]
+    fn lane_forms_4d_are_the_scalar_forms_bit_for_bit() {
+        // As in 3D: random points, ties between offsets (the rank order's hard cases),
+        // lattice points and their neighbours, and the edge of the split range.
+        let mut next = crate::stochastic::uniforms(0x5be0_cd19_137e_2179);
+        let xis = [0.0f32, -0.0, 1e-30, 0.5, ONE_BELOW, 1.0, 2.0, f32::NAN];
+        let mut compared = 0;
+        for i in 0..200_000usize {
+            let p = match i % 4 {
+                0 | 1 => [0; 4].map(|_| (next() - 0.5) * 200.0),
+                2 => {
+                    let (t, u) = ((i / 4) as f32 / 97.0 - 30.0, next() * 8.0);
+                    [
+                        [t, t, t, t],
+                        [t, t, u, t],
+                        [t, u, t, u],
+                        [u, t, t, t],
+                        [t, -t, 0.5 * t, u],
+                        [u, u, t, t],
+                    ][i / 4 % 6]
+                }
+                _ => {
+                    let k = [0.0f32, 1.0, -1.0, 2_097_151.0, -2_097_151.0][i / 4 % 5];
+                    let n = f32::from_bits(k.abs().to_bits() + (i as u32 / 20 % 3));
+                    [n.copysign(k), k, -n, k]
+                }
+            };
+            let seed = i as u32;
+            let xi = if i % 3 == 0 {
+                xis[i / 3 % xis.len()]
+            } else {
+                next()
+            };
+            if let Some(a) = super::simplex4(p, seed) {
+                let b = simplex4_scalar(p, seed);
+                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}: {a} vs {b}");
+                let a = super::simplex4_stochastic(p, seed, xi).unwrap();
+                let b = simplex4_stochastic_scalar(p, seed, xi);
+                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}, ξ {xi}: {a} vs {b}");
+                compared += 1;
+            }
+        }
+        // The edge points skew out of the split range more often in 4D.
+        assert!(compared > 180_000, "{compared}");
     }
 }
