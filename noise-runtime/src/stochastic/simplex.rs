@@ -12,8 +12,7 @@
 //! any dimension in [`lattice`].
 
 use super::estimators::sanitize_xi;
-use super::hash::hash3;
-use super::hash::{CORNER_MUL, PRIME};
+use super::hash::{CORNER_MUL, PRIME, hash3};
 use crate::math::split;
 use lattice::{Corners, Skew};
 
@@ -25,8 +24,9 @@ const G3: f32 = 1.0 / 6.0;
 /// Scale of 3D simplex noise, so that it lies in `[-1, 1]`. The largest value any point can
 /// take is below `B = max Σ_k t_k⁴ |d_k| |g|` over the simplex (each gradient turned towards
 /// its offset); searched numerically, `1/B` is 99.20 in 2D (unit gradients), 76.12 in 3D
-/// (`|g| = √2`) and 62.68 in 4D (`|g| = √3`), and the scales are these rounded down. (An
-/// earlier 3D scale of 32, Gustavson's for a radius² of 0.6, left the noise in ±0.42.)
+/// (`|g| = √2`) and 62.68 in 4D (`|g| = √3`), and the scales are these rounded down. (The
+/// earlier 3D scale, 32, is Gustavson's for a radius² of 0.6; with ½ it left the noise in
+/// ±0.42.)
 const SCALE: f32 = 76.0;
 
 /// The simplex corners of `p`: lattice cell and offsets of each corner.
@@ -260,7 +260,7 @@ fn grad4(c: [i32; 4], seed: u32) -> [f32; 4] {
 /// `perlin2` all the same (`noisebake report`): the skew, the unskew and the corners' weights
 /// are a longer chain of dependent steps than Perlin's fade, and the chain is the time. (A
 /// lane form, one corner per lane, cut its instructions by a sixth and its time by 2 %.)
-#[inline]
+#[inline(always)]
 pub fn simplex2(p: [f32; 2], seed: u32) -> f32 {
     Corners::<2, 3>::new(p, SKEW2).value(SCALE2, |c| grad2(c, seed))
 }
@@ -271,10 +271,13 @@ pub fn simplex2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
     Corners::<2, 3>::new(p, SKEW2).value_grad(SCALE2, |c| grad2(c, seed))
 }
 
-/// One-sample estimator of [`simplex2`]: one gradient of three, chosen with probability ∝ its
-/// weight. Choosing needs all three weights, so on a CPU it saves only two hashes and dot
-/// products; it is here for completeness and for fractal sums.
-#[inline]
+/// One-sample estimator of [`simplex2`]: one corner of three, chosen with probability ∝ its
+/// weight. On a CPU it is slower than [`simplex2`] (`noisebake report`: about 0.7×): choosing
+/// needs all three weights, which is most of the work, and then adds a running sum, a
+/// multiply and compares to the chain that the time is. It is here for completeness, for
+/// targets where a gradient read is dear, and for fractal sums, where one octave instead of
+/// all of them is the saving.
+#[inline(always)]
 pub fn simplex2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
     Corners::<2, 3>::new(p, SKEW2).stochastic(SCALE2, xi, |c| grad2(c, seed))
 }
@@ -287,7 +290,7 @@ pub fn simplex3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
 }
 
 /// 4D simplex noise, in `[-1, 1]`: five corners instead of [`perlin4`](super::perlin4)'s 16.
-#[inline]
+#[inline(always)]
 pub fn simplex4(p: [f32; 4], seed: u32) -> f32 {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
     if let Some(v) = sse::simplex4(p, seed) {
@@ -310,8 +313,10 @@ pub fn simplex4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 }
 
 /// One-sample estimator of [`simplex4`]: one gradient of five, chosen with probability ∝ its
-/// weight.
-#[inline]
+/// weight. On x86_64 it takes about as long as [`simplex4`] (`noisebake report`: 1.0×): the
+/// four gradients it skips are cheap next to the weights it must compute. For fractal sums,
+/// choose the octave stochastically ([`fractal_stochastic`](super::fractal_stochastic)).
+#[inline(always)]
 pub fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
     if let Some(v) = sse::simplex4_stochastic(p, seed, xi) {

@@ -153,8 +153,11 @@ impl<const N: usize, const M: usize> Corners<N, M> {
         for &e in &ends[..M - 1] {
             k += (target >= e) as usize;
         }
-        let k = k.min(M - 1);
-        scale * total * dot(grad(self.cell[k]), self.d[k])
+        // Every corner's term is made before the choice and one is read after it: the terms
+        // do not depend on ξ, so they run beside the weights and the compares instead of
+        // after them (in 2D the estimator took 1.5× the deterministic form's time otherwise).
+        let terms: [f32; M] = core::array::from_fn(|k| dot(grad(self.cell[k]), self.d[k]));
+        scale * total * terms[k.min(M - 1)]
     }
 }
 
