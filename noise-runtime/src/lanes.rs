@@ -168,6 +168,13 @@ impl F4 {
         (x + y) + (z + w)
     }
 
+    /// `shufps`: lanes 0 and 1 from `a`, 2 and 3 from `b`, each picked by two bits of `IMM`
+    /// (lane 0's from bits 0–1, up to lane 3's from bits 6–7).
+    #[inline(always)]
+    pub(crate) fn shuffle<const IMM: i32>(a: F4, b: F4) -> F4 {
+        F4(unsafe { _mm_shuffle_ps::<IMM>(a.0, b.0) })
+    }
+
     /// Lanes 0 and 2 of `a`, then lanes 0 and 2 of `b`.
     #[inline(always)]
     pub(crate) fn evens(a: F4, b: F4) -> F4 {

@@ -87,19 +87,21 @@ fn perlin3_in_range(v: F4, seed: u32) -> f32 {
         seed ^ yp0 ^ zp1,
         seed ^ yp1 ^ zp1,
     ];
-    let dot = |h: u32, c: u32| grad(h) * (f - F4::new(&unit_corner(c)));
-    let lo = F4::sums3([
-        dot(yz[0] ^ xp0, 0),
-        dot(yz[1] ^ xp0, 2),
-        dot(yz[2] ^ xp0, 4),
-        dot(yz[3] ^ xp0, 6),
-    ]);
-    let hi = F4::sums3([
-        dot(yz[0] ^ xp1, 1),
-        dot(yz[1] ^ xp1, 3),
-        dot(yz[2] ^ xp1, 5),
-        dot(yz[3] ^ xp1, 7),
-    ]);
+    // The four corners of a group by lanes, as columns: the gradient rows transposed, times
+    // the offsets from the corners along each axis. The offsets along y and z are the same
+    // in both groups, (y, z) = 00, 10, 01, 11 by lane; along x, `x` for the lower corners
+    // and `x − 1` for the upper. The same products and sums as the scalar form's dot
+    // products, in the same order.
+    let f1 = f - F4::splat(1.0);
+    let yy = F4::shuffle::<0b01_01_01_01>(f, f1);
+    let dy = F4::shuffle::<0b10_00_10_00>(yy, yy);
+    let dz = F4::shuffle::<0b10_10_10_10>(f, f1);
+    let dots = |h: [u32; 4], dx: F4| {
+        let [gx, gy, gz, _] = F4::transpose([grad(h[0]), grad(h[1]), grad(h[2]), grad(h[3])]);
+        (gx * dx + gy * dy) + gz * dz
+    };
+    let lo = dots(yz.map(|h| h ^ xp0), f.xxxx());
+    let hi = dots(yz.map(|h| h ^ xp1), f1.xxxx());
     // The scalar form's nested lerps, x first: lanes (y, z) = 00, 10, 01, 11; then y: lanes
     // z = 0, 1; then z.
     let a = F4::lerp(t.xxxx(), lo, hi);
