@@ -66,6 +66,17 @@ fn grad(h: u32) -> F4 {
     F4::new(&GRAD3.0[(h.wrapping_mul(CORNER_MUL) >> 28) as usize])
 }
 
+/// [`perlin3`](super::perlin3) of a point already in lanes (lane 3 is ignored): for the
+/// deterministic fBm, which scales one register per octave.
+#[inline(always)]
+pub(crate) fn perlin3_lanes(v: F4, seed: u32) -> f32 {
+    if lanes::in_split_range(v) {
+        perlin3_in_range(v, seed)
+    } else {
+        super::perlin3_with([v.x(), v.y(), v.z()], seed, crate::math::split)
+    }
+}
+
 /// [`perlin3`](super::perlin3) for a point in the split range.
 #[inline(always)]
 fn perlin3_in_range(v: F4, seed: u32) -> f32 {
