@@ -192,89 +192,106 @@ mod tests {
     };
     use crate::stochastic::estimators::ONE_BELOW;
 
+    /// The lane forms `lane` and `lane_sto` against the scalar forms bit for bit at 200 000
+    /// points from `point(i, next)`, seeds and ξ (hard ones every third point); points whose
+    /// skewed form leaves the split range take the scalar form anyway and are not compared,
+    /// and at least `min` must be compared.
+    #[allow(clippy::type_complexity)]
+    fn compare<const N: usize>(
+        stream: u64,
+        point: impl Fn(usize, &mut dyn FnMut() -> f32) -> [f32; N],
+        forms: (
+            fn([f32; N], u32) -> Option<f32>,
+            fn([f32; N], u32) -> f32,
+            fn([f32; N], u32, f32) -> Option<f32>,
+            fn([f32; N], u32, f32) -> f32,
+        ),
+        min: usize,
+    ) {
+        let (lane, scalar, lane_sto, scalar_sto) = forms;
+        let mut next = crate::stochastic::uniforms(stream);
+        let xis = [0.0f32, -0.0, 1e-30, 0.5, ONE_BELOW, 1.0, 2.0, f32::NAN];
+        let mut compared = 0;
+        for i in 0..200_000usize {
+            let p = point(i, &mut next);
+            let seed = i as u32;
+            let xi = if i % 3 == 0 {
+                xis[i / 3 % xis.len()]
+            } else {
+                next()
+            };
+            if let Some(a) = lane(p, seed) {
+                let b = scalar(p, seed);
+                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}: {a} vs {b}");
+                let a = lane_sto(p, seed, xi).unwrap();
+                let b = scalar_sto(p, seed, xi);
+                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}, ξ {xi}: {a} vs {b}");
+                compared += 1;
+            }
+        }
+        assert!(compared > min, "{compared}");
+    }
+
+    /// Lattice points and their neighbouring floats up to the edge of the split range:
+    /// coordinate `k` of one of five, and `n` one to three floats above its magnitude.
+    fn near_lattice(i: usize) -> (f32, f32) {
+        let k = [0.0f32, 1.0, -1.0, 2_097_151.0, -2_097_151.0][i / 4 % 5];
+        (k, f32::from_bits(k.abs().to_bits() + (i as u32 / 20 % 3)))
+    }
+
     #[test]
     fn lane_forms_are_the_scalar_forms_bit_for_bit() {
         // Random points, points where offsets tie (the diagonal, the cells' faces: the rank
         // order's hard cases), lattice points and their neighbouring floats, and the edge of
         // the split range for the skewed point.
-        let mut next = crate::stochastic::uniforms(0x1f83_d9ab_fb41_bd6b);
-        let xis = [0.0f32, -0.0, 1e-30, 0.5, ONE_BELOW, 1.0, 2.0, f32::NAN];
-        let mut compared = 0;
-        for i in 0..200_000usize {
-            let p = match i % 4 {
-                0 | 1 => [0; 3].map(|_| (next() - 0.5) * 200.0),
-                2 => {
-                    let (t, u) = ((i / 4) as f32 / 97.0 - 30.0, next() * 8.0);
-                    [[t, t, t], [t, t, u], [t, u, t], [u, t, t], [t, -t, 0.5 * t]][i / 4 % 5]
-                }
-                _ => {
-                    let k = [0.0f32, 1.0, -1.0, 2_097_151.0, -2_097_151.0][i / 4 % 5];
-                    let n = f32::from_bits(k.abs().to_bits() + (i as u32 / 20 % 3));
-                    [n.copysign(k), k, -n]
-                }
-            };
-            let seed = i as u32;
-            let xi = if i % 3 == 0 {
-                xis[i / 3 % xis.len()]
-            } else {
-                next()
-            };
-            // Points whose skewed form leaves the split range take the scalar form anyway.
-            if let Some(a) = super::simplex3(p, seed) {
-                let b = simplex3_scalar(p, seed);
-                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}: {a} vs {b}");
-                let a = super::simplex3_stochastic(p, seed, xi).unwrap();
-                let b = simplex3_stochastic_scalar(p, seed, xi);
-                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}, ξ {xi}: {a} vs {b}");
-                compared += 1;
+        let point = |i: usize, next: &mut dyn FnMut() -> f32| match i % 4 {
+            0 | 1 => [0; 3].map(|_| (next() - 0.5) * 200.0),
+            2 => {
+                let (t, u) = ((i / 4) as f32 / 97.0 - 30.0, next() * 8.0);
+                [[t, t, t], [t, t, u], [t, u, t], [u, t, t], [t, -t, 0.5 * t]][i / 4 % 5]
             }
-        }
-        assert!(compared > 190_000, "{compared}");
+            _ => {
+                let (k, n) = near_lattice(i);
+                [n.copysign(k), k, -n]
+            }
+        };
+        let forms = (
+            super::simplex3 as fn(_, _) -> _,
+            simplex3_scalar as fn(_, _) -> _,
+            super::simplex3_stochastic as fn(_, _, _) -> _,
+            simplex3_stochastic_scalar as fn(_, _, _) -> _,
+        );
+        compare(0x1f83_d9ab_fb41_bd6b, point, forms, 190_000);
     }
 
     #[test]
     fn lane_forms_4d_are_the_scalar_forms_bit_for_bit() {
-        // As in 3D: random points, ties between offsets (the rank order's hard cases),
-        // lattice points and their neighbours, and the edge of the split range.
-        let mut next = crate::stochastic::uniforms(0x5be0_cd19_137e_2179);
-        let xis = [0.0f32, -0.0, 1e-30, 0.5, ONE_BELOW, 1.0, 2.0, f32::NAN];
-        let mut compared = 0;
-        for i in 0..200_000usize {
-            let p = match i % 4 {
-                0 | 1 => [0; 4].map(|_| (next() - 0.5) * 200.0),
-                2 => {
-                    let (t, u) = ((i / 4) as f32 / 97.0 - 30.0, next() * 8.0);
-                    [
-                        [t, t, t, t],
-                        [t, t, u, t],
-                        [t, u, t, u],
-                        [u, t, t, t],
-                        [t, -t, 0.5 * t, u],
-                        [u, u, t, t],
-                    ][i / 4 % 6]
-                }
-                _ => {
-                    let k = [0.0f32, 1.0, -1.0, 2_097_151.0, -2_097_151.0][i / 4 % 5];
-                    let n = f32::from_bits(k.abs().to_bits() + (i as u32 / 20 % 3));
-                    [n.copysign(k), k, -n, k]
-                }
-            };
-            let seed = i as u32;
-            let xi = if i % 3 == 0 {
-                xis[i / 3 % xis.len()]
-            } else {
-                next()
-            };
-            if let Some(a) = super::simplex4(p, seed) {
-                let b = simplex4_scalar(p, seed);
-                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}: {a} vs {b}");
-                let a = super::simplex4_stochastic(p, seed, xi).unwrap();
-                let b = simplex4_stochastic_scalar(p, seed, xi);
-                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}, ξ {xi}: {a} vs {b}");
-                compared += 1;
+        // As in 3D, with the ties of four offsets.
+        let point = |i: usize, next: &mut dyn FnMut() -> f32| match i % 4 {
+            0 | 1 => [0; 4].map(|_| (next() - 0.5) * 200.0),
+            2 => {
+                let (t, u) = ((i / 4) as f32 / 97.0 - 30.0, next() * 8.0);
+                [
+                    [t, t, t, t],
+                    [t, t, u, t],
+                    [t, u, t, u],
+                    [u, t, t, t],
+                    [t, -t, 0.5 * t, u],
+                    [u, u, t, t],
+                ][i / 4 % 6]
             }
-        }
+            _ => {
+                let (k, n) = near_lattice(i);
+                [n.copysign(k), k, -n, k]
+            }
+        };
+        let forms = (
+            super::simplex4 as fn(_, _) -> _,
+            simplex4_scalar as fn(_, _) -> _,
+            super::simplex4_stochastic as fn(_, _, _) -> _,
+            simplex4_stochastic_scalar as fn(_, _, _) -> _,
+        );
         // The edge points skew out of the split range more often in 4D.
-        assert!(compared > 180_000, "{compared}");
+        compare(0x5be0_cd19_137e_2179, point, forms, 180_000);
     }
 }
