@@ -74,6 +74,26 @@ fn noise(c: &mut Criterion) {
         xis,
         |p, x| perlin3_stochastic(p, 1, x)
     );
+    bench!(g, "simplex2/deterministic", pts, xis, |p, _x| simplex2(
+        [p[0], p[1]],
+        1
+    ));
+    bench!(g, "simplex2/stochastic", pts, xis, |p, x| {
+        simplex2_stochastic([p[0], p[1]], 1, x)
+    });
+    bench!(g, "simplex3/deterministic", pts, xis, |p, _x| simplex3(
+        p, 1
+    ));
+    bench!(g, "simplex3/stochastic", pts, xis, |p, x| {
+        simplex3_stochastic(p, 1, x)
+    });
+    bench!(g, "simplex4/deterministic", pts, xis, |p, _x| simplex4(
+        [p[0], p[1], p[2], p[0] + p[2]],
+        1
+    ));
+    bench!(g, "simplex4/stochastic", pts, xis, |p, x| {
+        simplex4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x)
+    });
     bench!(g, "fbm3/deterministic", pts, xis, |p, _x| fbm3(p, f10, 1));
     bench!(g, "fbm3/stochastic", pts, xis, |p, x| fbm3_stochastic(
         p, f10, 1, x
