@@ -4,15 +4,18 @@
 //! proportional to its weight (eq. 1 with importance sampling) and evaluates only that
 //! corner's gradient.
 //!
-//! The 3D pair is free of branches on the point: which simplex holds it comes from the ranks
+//! Every form is free of branches on the point: which simplex holds it comes from the ranks
 //! of its offsets, a weight's support from a `max`, the gradient from a table, and the
-//! estimator's corner from a count of compares. On random points the first form's branches
+//! estimator's corner from a count of compares. On random points the first 3D form's branches
 //! (the simplex's six cases, a corner's support, the gradient's cases) mispredicted several
-//! times a call. The 2D and 4D forms and the gradients share the same steps, written once for
-//! any dimension in [`lattice`].
+//! times a call. The scalar forms of every dimension and the gradients are written once, for
+//! any dimension, in [`lattice`]; on x86_64 the 3D and 4D pairs run as lane forms in `sse`,
+//! bit for bit the scalar ones.
 
+#[cfg(test)]
 use super::estimators::sanitize_xi;
 use super::hash::{CORNER_MUL, PRIME, hash3};
+#[cfg(test)]
 use crate::math::split;
 use lattice::{Corners, Skew};
 
@@ -29,8 +32,10 @@ const G3: f32 = 1.0 / 6.0;
 /// ±0.42.)
 const SCALE: f32 = 76.0;
 
-/// The simplex corners of `p`: lattice cell and offsets of each corner.
-#[inline(always)]
+/// The simplex corners of `p`: lattice cell and offsets of each corner, as the 3D form once
+/// found them; now the tests' reference for the general lattice ([`lattice`]), which the
+/// scalar forms use.
+#[cfg(test)]
 fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
     corners_by(p, rank_order)
 }
@@ -40,6 +45,7 @@ fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
 /// first along the largest offset, then the second: axis `a` is in the second corner when its
 /// rank (the number of other offsets it is at least, ties going to the earlier axis) is 2, in
 /// the third when it is at least 1.
+#[cfg(any(test, all(target_arch = "x86_64", target_feature = "sse2")))]
 #[inline(always)]
 fn rank_order(d0: [f32; 3]) -> ([i32; 3], [i32; 3]) {
     let ge = |a: usize, b: usize| (d0[a] >= d0[b]) as i32;
@@ -49,7 +55,7 @@ fn rank_order(d0: [f32; 3]) -> ([i32; 3], [i32; 3]) {
 }
 
 /// [`corners`] with the simplex chosen by `order` (see [`rank_order`]).
-#[inline(always)]
+#[cfg(test)]
 fn corners_by(
     p: [f32; 3],
     order: impl Fn([f32; 3]) -> ([i32; 3], [i32; 3]),
@@ -65,7 +71,7 @@ fn corners_by(
 }
 
 /// [`corners_by`] for the skewed point `q`, split by `sp`.
-#[inline(always)]
+#[cfg(test)]
 fn corners_of(
     q: [f32; 3],
     sp: impl Fn(f32) -> (i32, f32),
@@ -98,13 +104,6 @@ fn corners_of(
     )
 }
 
-/// A corner's weight `max(½ − r², 0)⁴`.
-#[inline(always)]
-fn weight(d: [f32; 3]) -> f32 {
-    let t = (0.5 - (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])).max(0.0);
-    (t * t) * (t * t)
-}
-
 /// The 12 edge gradients of improved noise picked by 4 hash bits, padded to 16 as Perlin's
 /// reference does: `u = x` for `h < 8` else `y`; `v = y` for `h < 4`, `x` for `h` 12 and 14,
 /// else `z`; the gradient is `±u ± v` by bits 0 and 1.
@@ -127,12 +126,6 @@ static GRAD: [[f32; 3]; 16] = {
     g
 };
 
-#[inline(always)]
-fn grad_dot(c: [i32; 3], d: [f32; 3], seed: u32) -> f32 {
-    let g = GRAD[(hash3(c[0], c[1], c[2], seed) >> 28) as usize];
-    g[0] * d[0] + g[1] * d[1] + g[2] * d[2]
-}
-
 /// 3D simplex noise, in `[-1, 1]`.
 #[inline(always)]
 pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
@@ -147,12 +140,7 @@ pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
 /// range there.
 #[inline(always)]
 fn simplex3_scalar(p: [f32; 3], seed: u32) -> f32 {
-    let (c, d) = corners(p);
-    let mut n = 0.0;
-    for k in 0..4 {
-        n += weight(d[k]) * grad_dot(c[k], d[k], seed);
-    }
-    SCALE * n
+    Corners::<3, 4>::new(p, SKEW3).value(SCALE, |c| grad3(c, seed))
 }
 
 /// One-sample estimator of [`simplex3`]: one gradient, chosen with probability ∝ its weight.
@@ -173,20 +161,7 @@ pub fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
 /// [`simplex3_stochastic`] in scalar code (see [`simplex3_scalar`]).
 #[inline(always)]
 fn simplex3_stochastic_scalar(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    let (c, d) = corners(p);
-    let w = [weight(d[0]), weight(d[1]), weight(d[2]), weight(d[3])];
-    // The weights laid end to end; the corner is the number of their ends at or below
-    // ξ·total, a count of compares rather than a search. The target is kept below the total
-    // (the product rounds up to it for ξ just below 1), so a corner of weight 0, whose end is
-    // the one before it, is never the one counted to.
-    let ends = [w[0], w[0] + w[1], w[0] + w[1] + w[2]];
-    let total = ends[2] + w[3];
-    if total <= 0.0 {
-        return 0.0;
-    }
-    let target = (sanitize_xi(xi) * total).min(f32::from_bits(total.to_bits() - 1));
-    let k = ends.iter().map(|&e| (target >= e) as usize).sum::<usize>();
-    SCALE * total * grad_dot(c[k & 3], d[k & 3], seed)
+    Corners::<3, 4>::new(p, SKEW3).stochastic(SCALE, xi, |c| grad3(c, seed))
 }
 
 /// The skews of the 2D, 3D and 4D lattices (see [`Skew`]).
