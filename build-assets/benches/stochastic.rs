@@ -142,6 +142,31 @@ fn noise(c: &mut Criterion) {
     bench!(g, "worley3/deterministic", pts, xis, |p, _x| worley3_f1(
         p, 1
     ));
+    // The batch forms over all N points in one call (eight per instruction on AVX2).
+    let mut out = vec![0.0f32; N];
+    macro_rules! batch {
+        ($name:expr, |$p:ident, $x:ident, $o:ident| $call:expr) => {
+            g.bench_function($name, |b| {
+                b.iter(|| {
+                    let ($p, $x, $o) = (black_box(&pts[..]), black_box(&xis[..]), &mut out[..]);
+                    $call;
+                    black_box(&*$o);
+                })
+            });
+        };
+    }
+    batch!("perlin3/deterministic-batch", |p, _x, o| perlin3_batch(
+        p, 1, o
+    ));
+    batch!("perlin3/stochastic-batch", |p, x, o| {
+        perlin3_stochastic_batch(p, 1, x, o)
+    });
+    batch!("fbm3/deterministic-batch", |p, _x, o| fbm3_batch(
+        p, f10, 1, o
+    ));
+    batch!("fbm3/stochastic-batch", |p, x, o| {
+        fbm3_stochastic_batch(p, f10, 1, x, o)
+    });
     {
         use noise_functions::{CellDistance, Noise, Perlin};
         let fbm = Perlin.fbm(10, 0.5, 2.0);

@@ -1,8 +1,10 @@
 //! # noise-runtime
 //!
 //! The part of noisebake a game links: `#![no_std]`, no dependencies, and no `unsafe` outside
-//! one private module that calls SSE2 intrinsics on x86_64 (the hot paths of 3D and 4D Perlin,
-//! simplex and fBm noise; the same bits as the scalar code, which runs on every other target).
+//! two private modules that call SIMD intrinsics on x86_64 — SSE2 for the hot paths of 3D and
+//! 4D Perlin, simplex and fBm noise, AVX2 (when the CPU has it, asked at run time) for the
+//! batch forms of 3D Perlin and fBm — and the batch forms' dispatch to them. Either way the
+//! same bits as the scalar code, which runs on every other target.
 //!
 //! - [`Mask2`], [`Mask3`], [`Mask4`]: typed, `const`-constructible views over baked bytes, read
 //!   toroidally with any integer coordinates; [`Mask3::get_k`] gives the k-th independent value
@@ -57,6 +59,9 @@ pub mod coord;
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 #[allow(unsafe_code)]
 mod lanes;
+#[cfg(target_arch = "x86_64")]
+#[allow(unsafe_code)]
+mod lanes8;
 pub mod ldg;
 pub mod mask;
 pub mod math;

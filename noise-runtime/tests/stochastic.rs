@@ -494,3 +494,33 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    /// The batch forms (eight points per instruction where the CPU has AVX2) return what the
+    /// single-point functions return, bit for bit, for any points, ξ, seed and fractal.
+    #[test]
+    fn batch_forms_are_the_single_point_functions(
+        pts in proptest::collection::vec(proptest::array::uniform3(-1e4f32..1e4), 0..40),
+        xi in proptest::collection::vec(0.0f32..=1.0, 40),
+        seed: u32, oct in 1u32..16, halving: bool, gain in -2f32..2.0,
+    ) {
+        let f = if halving {
+            Fractal::new(oct, 2.0, if gain < 0.0 { -0.5 } else { 0.5 })
+        } else {
+            Fractal::new(oct, 1.5 + gain.abs(), gain)
+        };
+        let n = pts.len();
+        let mut out = vec![0.0f32; n];
+        let check = |got: &[f32], want: &dyn Fn(usize) -> f32| {
+            got.iter().enumerate().all(|(i, g)| g.to_bits() == want(i).to_bits())
+        };
+        prop_assert_eq!(perlin3_batch(&pts, seed, &mut out), n);
+        prop_assert!(check(&out, &|i| perlin3(pts[i], seed)));
+        prop_assert_eq!(perlin3_stochastic_batch(&pts, seed, &xi, &mut out), n);
+        prop_assert!(check(&out, &|i| perlin3_stochastic(pts[i], seed, xi[i])));
+        prop_assert_eq!(fbm3_batch(&pts, f, seed, &mut out), n);
+        prop_assert!(check(&out, &|i| fbm3(pts[i], f, seed)));
+        prop_assert_eq!(fbm3_stochastic_batch(&pts, f, seed, &xi, &mut out), n);
+        prop_assert!(check(&out, &|i| fbm3_stochastic(pts[i], f, seed, xi[i])));
+    }
+}

@@ -22,7 +22,9 @@ use std::time::Instant;
 pub struct Row {
     /// `perlin3`, `fbm3`, …
     pub noise: String,
-    /// `deterministic`, `stochastic`, or a peer crate's name.
+    /// `deterministic`, `stochastic`, `stochastic-1term` (sparse convolution with the cell sum
+    /// sampled too), `deterministic-batch` and `stochastic-batch` (the batch forms), or a peer
+    /// crate's name.
     pub variant: String,
     /// Nanoseconds per evaluation, single thread, random-order points.
     pub ns_per_eval: f64,
@@ -35,7 +37,10 @@ pub struct Row {
     pub bias: Option<f64>,
     /// Our deterministic time / this time: the median over rounds of alternating passes of the
     /// two, so both are measured on the same machine state. For stochastic rows the speedup
-    /// bought with the error; for peer rows below 1 when ours is faster.
+    /// bought with the error; for peer rows below 1 when ours is faster. For the batch rows
+    /// the deterministic time is the single-point form's (`deterministic-batch`: what the
+    /// batch buys) or the deterministic batch's (`stochastic-batch`: what the estimator buys
+    /// on lanes).
     pub speedup: Option<f64>,
 }
 
@@ -185,15 +190,63 @@ where
     A: Fn([f32; 3], f32) -> f32 + Copy,
     B: Fn([f32; 3], f32) -> f32 + Copy,
 {
-    let round = || {
+    time_passes(pts, xis, |p, x| pass(p, x, a), |p, x| pass(p, x, b))
+}
+
+/// A batch function of the report: evaluates the points with their ξ into `out` (of the
+/// points' length).
+type Batch = fn(&[[f32; 3]], &[f32], &mut [f32]);
+
+/// Seconds for one call of the batch function `f` on `pts`, into `out` (a chunk's length).
+fn pass_batch(pts: &[[f32; 3]], xis: &[f32], out: &mut [f32], f: Batch) -> f64 {
+    let start = Instant::now();
+    f(black_box(pts), black_box(xis), &mut out[..pts.len()]);
+    black_box(&*out);
+    start.elapsed().as_secs_f64()
+}
+
+/// [`time_pair`] for two batch functions: each chunk of points goes to `a` and `b` in one call.
+fn time_batch_pair(pts: &[[f32; 3]], xis: &[f32], a: Batch, b: Batch) -> (f64, f64, f64) {
+    let mut out_a = vec![0.0f32; CHUNK];
+    let mut out_b = vec![0.0f32; CHUNK];
+    time_passes(
+        pts,
+        xis,
+        |p, x| pass_batch(p, x, &mut out_a, a),
+        |p, x| pass_batch(p, x, &mut out_b, b),
+    )
+}
+
+/// [`time_pair`] for a single-point function `a` against a batch function `b`.
+fn time_point_batch<A>(pts: &[[f32; 3]], xis: &[f32], a: A, b: Batch) -> (f64, f64, f64)
+where
+    A: Fn([f32; 3], f32) -> f32 + Copy,
+{
+    let mut out = vec![0.0f32; CHUNK];
+    time_passes(
+        pts,
+        xis,
+        |p, x| pass(p, x, a),
+        |p, x| pass_batch(p, x, &mut out, b),
+    )
+}
+
+/// The rounds behind [`time_pair`], for any two passes (a pass times one chunk, in seconds).
+fn time_passes(
+    pts: &[[f32; 3]],
+    xis: &[f32],
+    mut a: impl FnMut(&[[f32; 3]], &[f32]) -> f64,
+    mut b: impl FnMut(&[[f32; 3]], &[f32]) -> f64,
+) -> (f64, f64, f64) {
+    let mut round = || {
         let (mut ta, mut tb) = (0.0, 0.0);
         for (k, (p, x)) in pts.chunks(CHUNK).zip(xis.chunks(CHUNK)).enumerate() {
             if k % 2 == 0 {
-                ta += pass(p, x, a);
-                tb += pass(p, x, b);
+                ta += a(p, x);
+                tb += b(p, x);
             } else {
-                tb += pass(p, x, b);
-                ta += pass(p, x, a);
+                tb += b(p, x);
+                ta += a(p, x);
             }
         }
         (ta, tb)
@@ -470,8 +523,101 @@ pub fn run_with(timed: usize) -> Vec<Row> {
             speedup: Some(speedup),
         });
     }
+    rows.extend(batch_rows(&pts, &xis, &img, &white, &stbn));
     rows.extend(peers(&pts, &xis));
     rows
+}
+
+/// The batch forms (`perlin3_batch`, `fbm3_batch` and their estimators: eight points per
+/// instruction on AVX2, one at a time elsewhere): `deterministic-batch` rows, whose speedup
+/// is over the single-point deterministic form, and `stochastic-batch` rows, whose speedup is
+/// over the deterministic batch, with their error measured through the batch function.
+fn batch_rows(
+    pts: &[[f32; 3]],
+    xis: &[f32],
+    img: &[[f32; 3]],
+    white: &[f32],
+    stbn: &[f64],
+) -> Vec<Row> {
+    type Single = fn([f32; 3], f32) -> f32;
+    let forms: [(&str, Single, Batch, Batch); 2] = [
+        (
+            "perlin3",
+            |p, _| perlin3(p, 1),
+            |p, _, o| {
+                perlin3_batch(p, 1, o);
+            },
+            |p, x, o| {
+                perlin3_stochastic_batch(p, 1, x, o);
+            },
+        ),
+        (
+            "fbm3",
+            |p, _| fbm3(p, Fractal::new(10, 2.0, 0.5), 1),
+            |p, _, o| {
+                fbm3_batch(p, Fractal::new(10, 2.0, 0.5), 1, o);
+            },
+            |p, x, o| {
+                fbm3_stochastic_batch(p, Fractal::new(10, 2.0, 0.5), 1, x, o);
+            },
+        ),
+    ];
+    let mut rows = Vec::new();
+    for (name, single, det, sto) in forms {
+        let (_, det_ns, over_single) = time_point_batch(pts, xis, single, det);
+        rows.push(Row::timed(
+            name,
+            "deterministic-batch",
+            det_ns,
+            Some(over_single),
+        ));
+        let (_, sto_ns, speedup) = time_batch_pair(pts, xis, det, sto);
+        let mut exact = vec![0.0f32; img.len()];
+        det(img, &[], &mut exact);
+        let (w, bias) = rmse_batch(img, &exact, sto, &|i, j| white[j * SIDE * SIDE + i]);
+        let (b, _) = rmse_batch(img, &exact, sto, &|i, j| stbn[j * SIDE * SIDE + i] as f32);
+        rows.push(Row {
+            noise: name.into(),
+            variant: "stochastic-batch".into(),
+            ns_per_eval: sto_ns,
+            rmse: Some(w),
+            rmse_stbn: Some(b),
+            bias: Some(bias),
+            speedup: Some(speedup),
+        });
+    }
+    rows
+}
+
+/// [`rmse`] through a batch estimator: sample `j` of every point at once.
+fn rmse_batch(
+    pts: &[[f32; 3]],
+    exact: &[f32],
+    sto: Batch,
+    xi: &dyn Fn(usize, usize) -> f32,
+) -> (BTreeMap<String, f64>, f64) {
+    let mut out = BTreeMap::new();
+    let mut bias = 0.0;
+    let mut v = vec![0.0f32; pts.len()];
+    for &k in &KS {
+        let mut sum = vec![0.0f64; pts.len()];
+        for j in 0..k {
+            let x: Vec<f32> = (0..pts.len()).map(|i| xi(i, j)).collect();
+            sto(pts, &x, &mut v);
+            for (s, &v) in sum.iter_mut().zip(&v) {
+                *s += v as f64;
+            }
+        }
+        let (mut se, mut me) = (0.0, 0.0);
+        for (s, &e) in sum.iter().zip(exact) {
+            let d = s / k as f64 - e as f64;
+            se += d * d;
+            me += d;
+        }
+        out.insert(k.to_string(), (se / pts.len() as f64).sqrt());
+        bias = me / pts.len() as f64;
+    }
+    (out, bias)
 }
 
 /// One goal of the report (issue 7), checked against a run's rows.
@@ -494,6 +640,15 @@ pub struct Goal {
 /// each goal's time, the time scaled to the reference by the interleaved ratio to the peer.
 /// Met or not is decided on this run's own time.
 pub const REFERENCE_NS: [(&str, f64, f64); 2] = [("perlin3", 25.0, 32.0), ("fbm3", 240.0, 309.0)];
+
+/// The variants of our own rows; any other variant is a peer crate's.
+pub const OURS: [&str; 5] = [
+    "deterministic",
+    "stochastic",
+    "stochastic-1term",
+    "deterministic-batch",
+    "stochastic-batch",
+];
 
 /// The paper's GPU speedups (Fajardo & Pharr, Table 1) that each estimator should reach.
 pub const PAPER_SPEEDUPS: [(&str, f64); 6] = [
@@ -546,9 +701,7 @@ pub fn goals(rows: &[Row]) -> Vec<Goal> {
     ] {
         let fastest_peer = rows
             .iter()
-            .filter(|r| {
-                r.noise == noise && r.variant != "deterministic" && r.variant != "stochastic"
-            })
+            .filter(|r| r.noise == noise && !OURS.contains(&r.variant.as_str()))
             .filter_map(|r| r.speedup.map(|s| (s, &r.variant)))
             .max_by(|a, b| a.0.total_cmp(&b.0));
         if let Some((s, peer)) = fastest_peer {
@@ -561,6 +714,16 @@ pub fn goals(rows: &[Row]) -> Vec<Goal> {
         }
     }
     for (noise, want) in PAPER_SPEEDUPS {
+        // The batch forms' estimator against the deterministic batch: the CPU's counterpart
+        // of the paper's GPU, where a warp evaluates its pixels' points side by side.
+        if let Some(s) = find(noise, "stochastic-batch").and_then(|r| r.speedup) {
+            out.push(Goal {
+                what: format!("{noise} speedup (batch)"),
+                goal: format!("≥ {want}×"),
+                measured: format!("{s:.2}×"),
+                met: s >= want,
+            });
+        }
         if let Some(s) = find(noise, "stochastic").and_then(|r| r.speedup) {
             let window = match (
                 noise,
@@ -672,5 +835,32 @@ mod tests {
         // Other speedups carry no such line.
         let p = g.iter().find(|g| g.what == "perlin3 speedup").unwrap();
         assert_eq!(p.measured, "1.30×");
+    }
+
+    #[test]
+    fn batch_rows_get_their_own_goal_lines_and_are_not_peers() {
+        let rows = vec![
+            Row::timed("perlin3", "stochastic", 13.0, Some(1.3)),
+            Row::timed("perlin3", "deterministic-batch", 3.0, Some(4.0)),
+            Row::timed("perlin3", "stochastic-batch", 1.5, Some(2.0)),
+            Row::timed("fbm3", "stochastic-batch", 3.0, Some(11.9)),
+            Row::timed("worley3", "deterministic", 50.0, None),
+            Row::timed("worley3", "deterministic-batch", 12.0, Some(4.2)),
+            Row::timed("worley3", "noise-functions", 80.0, Some(0.62)),
+        ];
+        let g = goals(&rows);
+        let get = |what: &str| g.iter().find(|g| g.what == what).cloned();
+        let b = get("perlin3 speedup (batch)").unwrap();
+        assert!(b.met);
+        assert_eq!((b.goal.as_str(), b.measured.as_str()), ("≥ 1.9×", "2.00×"));
+        assert!(
+            !get("perlin3 speedup").unwrap().met,
+            "the single-point line stands apart"
+        );
+        assert!(!get("fbm3 speedup (batch)").unwrap().met, "11.9 < 12");
+        // Our batch row is not a peer: the Worley goal names the one peer.
+        let w = get("worley3 deterministic").unwrap();
+        assert!(w.met);
+        assert_eq!(w.measured, "0.62× the time of noise-functions");
     }
 }

@@ -42,7 +42,7 @@ impl Fractal {
     }
 
     #[inline(always)]
-    fn sane(self) -> (u32, f32, f32) {
+    pub(crate) fn sane(self) -> (u32, f32, f32) {
         let c = |x: f32, m: f32| if x >= -m { x.min(m) } else { -m };
         let gain = if self.gain.is_nan() {
             0.0

@@ -55,6 +55,7 @@
 //! and coordinates anywhere, including ±10^7 and beyond, where f32 has no fractional bits left
 //! and the noise degenerates to its lattice values without NaN or infinity.
 
+mod batch;
 mod estimators;
 mod fractal;
 mod gabor;
@@ -75,6 +76,7 @@ pub(crate) fn uniforms(mut s: u64) -> impl FnMut() -> f32 {
     }
 }
 
+pub use batch::{fbm3_batch, fbm3_stochastic_batch, perlin3_batch, perlin3_stochastic_batch};
 pub use estimators::{
     ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
 };

@@ -32,7 +32,8 @@ const GRAD2: [[f32; 2]; 8] = [
 /// (the fourth 0), so that a gradient is one aligned 16-byte read.
 #[repr(align(16))]
 struct Grad3([[f32; 4]; 16]);
-static GRAD3: Grad3 = Grad3([
+static GRAD3: Grad3 = Grad3(GRAD3_ROWS);
+const GRAD3_ROWS: [[f32; 4]; 16] = [
     [1.0, 1.0, 0.0, 0.0],
     [-1.0, 1.0, 0.0, 0.0],
     [1.0, -1.0, 0.0, 0.0],
@@ -49,7 +50,24 @@ static GRAD3: Grad3 = Grad3([
     [1.0, -1.0, 0.0, 0.0],
     [-1.0, 1.0, 0.0, 0.0],
     [0.0, -1.0, -1.0, 0.0],
-]);
+];
+
+/// [`GRAD3`] by columns: `GRAD3_COLUMNS[a][j >> 3][j & 7]` is axis `a` of gradient `j`, for
+/// the batch forms, which read one axis of eight gradients at a time.
+#[cfg(target_arch = "x86_64")]
+pub(super) const GRAD3_COLUMNS: [[[f32; 8]; 2]; 3] = {
+    let mut c = [[[0.0f32; 8]; 2]; 3];
+    let mut j = 0;
+    while j < 16 {
+        let mut a = 0;
+        while a < 3 {
+            c[a][j >> 3][j & 7] = GRAD3_ROWS[j][a];
+            a += 1;
+        }
+        j += 1;
+    }
+    c
+};
 
 /// The 32 edge gradients of the tesseract: one axis zero, the other three ±1. Aligned rows,
 /// as [`GRAD3`].
