@@ -1,7 +1,9 @@
 //! Eight lanes in one AVX2 register, for the batch forms of gradient noise
 //! ([`stochastic::batch`](crate::stochastic)) on x86_64: whether the CPU has AVX2 (asked once
-//! at run time, since the x86_64 baseline is SSE2), and the two lane operations that LLVM does
-//! not find by itself in the batch kernels' plain loops over `[f32; 8]`.
+//! at run time, since the x86_64 baseline is SSE2), and the few lane operations that LLVM
+//! does not make well by itself from the batch kernels' plain loops over `[f32; 8]`: a
+//! 16-entry table read, a 64-bit product's middle bits, one step of the estimators' corner
+//! choice, and a lane mask's sign bits.
 //!
 //! The kernels themselves are ordinary Rust over eight-element arrays, compiled with
 //! `#[target_feature(enable = "avx2")]`: LLVM turns each loop over the lanes into one AVX2

@@ -6,7 +6,7 @@
 //!
 //! Measured by `noisebake report stochastic` (single thread, random-order points, AMD Zen 5),
 //! the batch forms cut every variant's time about 4×: 3.5–4.3 ns a point for
-//! [`perlin3`](super::perlin3) (12–17 ns one point at a time), 2.6–3.5 ns for its estimator,
+//! [`perlin3`] (12–17 ns one point at a time), 2.6–3.5 ns for its estimator,
 //! 40–48 ns for ten octaves of fBm (140–177 ns) and 3.6–4.3 ns for its estimator. On lanes the
 //! deterministic form's eight corners cost little more than the estimator's one (both pay for
 //! the split, the fades and the hashing, and a table read of eight gradients is three
@@ -58,13 +58,13 @@ impl Path {
     }
 }
 
-/// [`perlin3`](super::perlin3) at every point: `out[i] = perlin3(points[i], seed)` for the
+/// [`perlin3`] at every point: `out[i] = perlin3(points[i], seed)` for the
 /// first `min(points.len(), out.len())` points, whose count it returns.
 pub fn perlin3_batch(points: &[[f32; 3]], seed: u32, out: &mut [f32]) -> usize {
     perlin3_batch_on(Path::best(), points, seed, out)
 }
 
-/// [`perlin3_stochastic`](super::perlin3_stochastic) at every point with its own ξ:
+/// [`perlin3_stochastic`] at every point with its own ξ:
 /// `out[i] = perlin3_stochastic(points[i], seed, xi[i])` for the first `min` of the three
 /// lengths, whose count it returns.
 pub fn perlin3_stochastic_batch(
@@ -76,13 +76,13 @@ pub fn perlin3_stochastic_batch(
     perlin3_stochastic_batch_on(Path::best(), points, seed, xi, out)
 }
 
-/// [`fbm3`](super::fbm3) at every point: `out[i] = fbm3(points[i], f, seed)` for the first
+/// [`fbm3`] at every point: `out[i] = fbm3(points[i], f, seed)` for the first
 /// `min(points.len(), out.len())` points, whose count it returns.
 pub fn fbm3_batch(points: &[[f32; 3]], f: Fractal, seed: u32, out: &mut [f32]) -> usize {
     fbm3_batch_on(Path::best(), points, f, seed, out)
 }
 
-/// [`fbm3_stochastic`](super::fbm3_stochastic) at every point with its own ξ:
+/// [`fbm3_stochastic`] at every point with its own ξ:
 /// `out[i] = fbm3_stochastic(points[i], f, seed, xi[i])` for the first `min` of the three
 /// lengths, whose count it returns. The lanes serve lacunarity 2 and gain ±½ (the paper's
 /// fBm); other parameters run one point at a time.

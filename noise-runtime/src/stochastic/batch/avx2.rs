@@ -1,7 +1,7 @@
 //! The batch kernels on eight AVX2 lanes: each step of the single-point function as a plain
-//! loop over `[f32; 8]`, which LLVM compiles to one AVX2 instruction, plus the two lane
-//! operations of [`Avx2`] it does not find itself (the gradient table read and the
-//! fixed-point cut). The helpers are `#[inline(always)]` so that they, and their loops, are
+//! loop over `[f32; 8]`, which LLVM compiles to one AVX2 instruction, plus the lane
+//! operations of [`Avx2`] it does not make well itself (the gradient table read, the
+//! fixed-point cut and decision of the corner choice, the range mask). The helpers are `#[inline(always)]` so that they, and their loops, are
 //! compiled inside the `#[target_feature(enable = "avx2")]` entry points; they take the
 //! [`Avx2`] token that the lane operations require. A lane whose coordinates leave the split
 //! range (`|x| ≥ 2^22`, NaN, infinite) is computed again by the single-point function, which
