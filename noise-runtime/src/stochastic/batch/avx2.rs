@@ -331,7 +331,10 @@ pub(super) fn fbm3_stochastic(
             let mut remapped = [0.0f32; W];
             let mut q = [[0.0f32; W]; 3];
             for i in 0..W {
-                let target = (sanitize_xi(x[i]) * total).min(below);
+                // Non-negative, so the bits order as the values: an integer minimum, without
+                // `f32::min`'s NaN case (no NaN comes out of `sanitize_xi`).
+                let target =
+                    f32::from_bits((sanitize_xi(x[i]) * total).to_bits().min(below.to_bits()));
                 let d = (2.0 - target).to_bits();
                 // k + 1 = 128 − (biased exponent of d), less one unless d is a power of two;
                 // octave 0 below 1.
