@@ -21,5 +21,8 @@ pub fn use_everything(x: i32, y: i32, frame: u32) -> f32 {
         1,
         frac(m),
     ) + noisebake::stochastic::smooth_voronoi3([g, m, s], 2);
-    m + g + d[2] + s + st + noisebake::math::sqrt(2.0)
+    // The batch forms (AVX2 detection without std).
+    let mut out = [0.0f32; 9];
+    noisebake::stochastic::perlin3_stochastic_batch(&[[g, m, s]; 9], 1, &[frac(m); 9], &mut out);
+    m + g + d[2] + s + st + out[8] + noisebake::math::sqrt(2.0)
 }
