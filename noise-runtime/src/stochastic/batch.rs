@@ -10,7 +10,7 @@
 //! 40–48 ns for ten octaves of fBm (140–177 ns) and 3.6–4.3 ns for its estimator. On lanes the
 //! deterministic form's eight corners cost little more than the estimator's one (both pay for
 //! the split, the fades and the hashing, and a table read of eight gradients is three
-//! instructions), so the estimator's lead stays 1.3–1.5× for Perlin and 10.7× for fBm, below
+//! instructions), so the estimator's lead stays 1.3–1.5× for Perlin and 10.7–11.1× for fBm, below
 //! the paper's GPU ratios (1.9× and 12×): what the batch buys is the absolute time.
 //!
 //! Each function evaluates the first `min` of its slices' lengths and returns that count; it

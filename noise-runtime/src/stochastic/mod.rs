@@ -50,7 +50,7 @@
 //! and their estimators) run eight points per AVX2 instruction, as a GPU warp runs its
 //! pixels, and cut the time of every variant about 4× (3D Perlin 3.4 ns a point, its
 //! estimator 2.6 ns; fBm with ten octaves 40 ns, its estimator 3.5–4.2 ns). The estimator's
-//! lead over the deterministic form stays about the same on lanes (1.3× for Perlin, 10–11×
+//! lead over the deterministic form stays about the same on lanes (1.3–1.5× for Perlin, 11×
 //! for fBm): both forms pay for the split, the fades and the hashing, and on lanes the
 //! deterministic form's eight corners cost little more than the estimator's one.
 //!
