@@ -48,10 +48,11 @@
 //!
 //! Where many points are shaded at once, the batch forms ([`perlin3_batch`], [`fbm3_batch`]
 //! and their estimators) run eight points per AVX2 instruction, as a GPU warp runs its
-//! pixels, and cut the time of every variant about 4× (3D Perlin 3.4 ns a point, its
-//! estimator 2.6 ns; fBm with ten octaves 40 ns, its estimator 3.5–4.2 ns). The estimator's
-//! lead over the deterministic form stays about the same on lanes (1.3–1.5× for Perlin, 11×
-//! for fBm): both forms pay for the split, the fades and the hashing, and on lanes the
+//! pixels, and cut the time of every variant about 4× (3D Perlin 3.4–4.3 ns a point, its
+//! estimator 2.6–3.5 ns; fBm with ten octaves 40–48 ns, its estimator 3.6–4.4 ns). The
+//! estimator's lead over the deterministic form grows a little on lanes (1.3–1.5× for Perlin,
+//! 11× for fBm) but stays below the paper's GPU ratios: both forms pay for the split, the
+//! fades and the hashing, and on lanes the
 //! deterministic form's eight corners cost little more than the estimator's one.
 //!
 //! # Hard cases
