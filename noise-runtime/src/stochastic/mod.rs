@@ -52,8 +52,8 @@
 //! estimator 2.6–3.5 ns; fBm with ten octaves 40–48 ns, its estimator 3.6–4.4 ns). The
 //! estimator's lead over the deterministic form grows a little on lanes (1.3–1.5× for Perlin,
 //! 11× for fBm) but stays below the paper's GPU ratios: both forms pay for the split, the
-//! fades and the hashing, and on lanes the
-//! deterministic form's eight corners cost little more than the estimator's one.
+//! fades and the hashing, and on lanes the deterministic form's eight corners cost little
+//! more than the estimator's one.
 //!
 //! # Hard cases
 //!
