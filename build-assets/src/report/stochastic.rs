@@ -30,9 +30,9 @@ pub struct Row {
     pub ns_per_eval: f64,
     /// RMSE against the deterministic value averaging k = 1, 4, 16, 64 white-noise ξ
     /// (stochastic rows only).
-    pub rmse: Option<BTreeMap<String, f64>>,
+    pub rmse: Option<Errors>,
     /// The same with ξ from an STBN mask.
-    pub rmse_stbn: Option<BTreeMap<String, f64>>,
+    pub rmse_stbn: Option<Errors>,
     /// Mean error at 64 samples (stochastic rows only).
     pub bias: Option<f64>,
     /// Our deterministic time / this time: the median over rounds of alternating passes of the
@@ -42,6 +42,9 @@ pub struct Row {
     /// batch buys) or the deterministic batch's (`stochastic-batch`: what the estimator buys
     /// on lanes).
     pub speedup: Option<f64>,
+    /// The spread behind `speedup`: the 3rd and 7th of the rounds' ratios in order (the range
+    /// of the middle five of nine), so a reader can tell a verdict from the machine's drift.
+    pub speedup_spread: Option<[f64; 2]>,
 }
 
 impl Row {
@@ -55,7 +58,23 @@ impl Row {
             rmse_stbn: None,
             bias: None,
             speedup,
+            speedup_spread: None,
         }
+    }
+
+    /// A row timed against our deterministic form: the second function of `t`, its speedup
+    /// and spread.
+    fn paired(noise: &str, variant: &str, t: Paired) -> Row {
+        Row {
+            speedup_spread: Some(t.spread),
+            ..Row::timed(noise, variant, t.b_ns, Some(t.ratio))
+        }
+    }
+
+    /// This row with the error columns of an estimator.
+    fn with_error(mut self, rmse: Errors, rmse_stbn: Errors, bias: f64) -> Row {
+        (self.rmse, self.rmse_stbn, self.bias) = (Some(rmse), Some(rmse_stbn), Some(bias));
+        self
     }
 }
 
@@ -178,14 +197,30 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// RMSE by sample count.
+type Errors = BTreeMap<String, f64>;
+
+/// Two functions timed together ([`time_pair`]).
+#[derive(Clone, Copy, Debug)]
+struct Paired {
+    /// ns per call of the first function, the median over rounds.
+    a_ns: f64,
+    /// ns per call of the second.
+    b_ns: f64,
+    /// The median over rounds of the first's time over the second's.
+    ratio: f64,
+    /// The 3rd and 7th of the rounds' ratios in order.
+    spread: [f64; 2],
+}
+
 /// Two functions timed together: ns per call of each (the median over rounds) and the median
-/// over rounds of the ratio of their times. A round runs both over all 65 536 random points
+/// over rounds of the ratio of their times, with its spread. A round runs both over all 65 536 random points
 /// (so branch predictors cannot learn the sequence), interleaved in chunks of 2048, the order
 /// alternating from chunk to chunk. On a shared machine the clock and the neighbours' load
 /// drift over seconds: two functions timed one after the other (as criterion does) can be
 /// measured at different speeds, while interleaved chunks, tens of microseconds apart, see
 /// the same machine.
-fn time_pair<A, B>(pts: &[[f32; 3]], xis: &[f32], a: A, b: B) -> (f64, f64, f64)
+fn time_pair<A, B>(pts: &[[f32; 3]], xis: &[f32], a: A, b: B) -> Paired
 where
     A: Fn([f32; 3], f32) -> f32 + Copy,
     B: Fn([f32; 3], f32) -> f32 + Copy,
@@ -206,7 +241,7 @@ fn pass_batch(pts: &[[f32; 3]], xis: &[f32], out: &mut [f32], f: Batch) -> f64 {
 }
 
 /// [`time_pair`] for two batch functions: each chunk of points goes to `a` and `b` in one call.
-fn time_batch_pair(pts: &[[f32; 3]], xis: &[f32], a: Batch, b: Batch) -> (f64, f64, f64) {
+fn time_batch_pair(pts: &[[f32; 3]], xis: &[f32], a: Batch, b: Batch) -> Paired {
     let mut out_a = vec![0.0f32; CHUNK];
     let mut out_b = vec![0.0f32; CHUNK];
     time_passes(
@@ -218,7 +253,7 @@ fn time_batch_pair(pts: &[[f32; 3]], xis: &[f32], a: Batch, b: Batch) -> (f64, f
 }
 
 /// [`time_pair`] for a single-point function `a` against a batch function `b`.
-fn time_point_batch<A>(pts: &[[f32; 3]], xis: &[f32], a: A, b: Batch) -> (f64, f64, f64)
+fn time_point_batch<A>(pts: &[[f32; 3]], xis: &[f32], a: A, b: Batch) -> Paired
 where
     A: Fn([f32; 3], f32) -> f32 + Copy,
 {
@@ -237,7 +272,7 @@ fn time_passes(
     xis: &[f32],
     mut a: impl FnMut(&[[f32; 3]], &[f32]) -> f64,
     mut b: impl FnMut(&[[f32; 3]], &[f32]) -> f64,
-) -> (f64, f64, f64) {
+) -> Paired {
     let mut round = || {
         let (mut ta, mut tb) = (0.0, 0.0);
         for (k, (p, x)) in pts.chunks(CHUNK).zip(xis.chunks(CHUNK)).enumerate() {
@@ -254,11 +289,14 @@ fn time_passes(
     round();
     let rounds: Vec<(f64, f64)> = (0..ROUNDS).map(|_| round()).collect();
     let ns = |t: f64| t * 1e9 / pts.len() as f64;
-    (
-        median(rounds.iter().map(|r| ns(r.0)).collect()),
-        median(rounds.iter().map(|r| ns(r.1)).collect()),
-        median(rounds.iter().map(|r| r.0 / r.1).collect()),
-    )
+    let mut ratios: Vec<f64> = rounds.iter().map(|r| r.0 / r.1).collect();
+    ratios.sort_by(f64::total_cmp);
+    Paired {
+        a_ns: median(rounds.iter().map(|r| ns(r.0)).collect()),
+        b_ns: median(rounds.iter().map(|r| ns(r.1)).collect()),
+        ratio: median(ratios.clone()),
+        spread: [ratios[ROUNDS / 4], ratios[ROUNDS - 1 - ROUNDS / 4]],
+    }
 }
 
 /// ξ sources for the error columns: white noise, or the STBN mask's pixel sequence.
@@ -267,7 +305,7 @@ fn rmse(
     exact: &[f32],
     sto: &dyn Fn([f32; 3], f32) -> f32,
     xi: &dyn Fn(usize, usize) -> f32,
-) -> (BTreeMap<String, f64>, f64) {
+) -> (Errors, f64) {
     let mut out = BTreeMap::new();
     let mut bias = 0.0;
     for &k in &KS {
@@ -368,12 +406,9 @@ where
     N: Fn([f32; 3], f32) -> f32 + Copy,
     F: Fn([f32; 3], f32) -> f32 + Copy,
 {
-    let row = |variant: &str, (_, ns, ratio): (f64, f64, f64)| {
-        Row::timed(noise, variant, ns, Some(ratio))
-    };
     [
-        row("noise-functions", time_pair(pts, xis, ours, nf)),
-        row("fastnoise-lite", time_pair(pts, xis, ours, fnl)),
+        Row::paired(noise, "noise-functions", time_pair(pts, xis, ours, nf)),
+        Row::paired(noise, "fastnoise-lite", time_pair(pts, xis, ours, fnl)),
     ]
 }
 
@@ -459,28 +494,19 @@ pub fn run_with(timed: usize) -> Vec<Row> {
     };
     let mut rows = Vec::new();
     for (name, det, sto) in functions() {
-        let (det_ns, sto_ns, speedup) = times[name];
-        rows.push(Row::timed(name, "deterministic", det_ns, None));
+        let t = times[name];
+        rows.push(Row::timed(name, "deterministic", t.a_ns, None));
         if let Some(sto) = sto {
-            let ns = sto_ns;
             let exact: Vec<f32> = img.iter().map(|&p| det(p)).collect();
             let (w, bias) = rmse(&img, &exact, &*sto, &|i, j| white[j * SIDE * SIDE + i]);
             let (b, _) = rmse(&img, &exact, &*sto, &|i, j| {
                 stbn[j * SIDE * SIDE + i] as f32
             });
-            rows.push(Row {
-                noise: name.into(),
-                variant: "stochastic".into(),
-                ns_per_eval: ns,
-                rmse: Some(w),
-                rmse_stbn: Some(b),
-                bias: Some(bias),
-                speedup: Some(speedup),
-            });
+            rows.push(Row::paired(name, "stochastic", t).with_error(w, b, bias));
         }
     }
     // The one-term estimators: the 27-cell sum sampled as well (one kernel evaluation).
-    let one_term: [(&str, (f64, f64, f64), Sto); 2] = [
+    let one_term: [(&str, Paired, Sto); 2] = [
         (
             "sparse_conv3",
             time_pair(
@@ -502,7 +528,7 @@ pub fn run_with(timed: usize) -> Vec<Row> {
             Box::new(move |p, x| fbm_sparse_conv3_stochastic1(p, fbm, 10, 1, x)),
         ),
     ];
-    for (name, (_, ns, speedup), sto) in one_term {
+    for (name, t, sto) in one_term {
         let det = functions()
             .into_iter()
             .find(|f| f.0 == name)
@@ -513,15 +539,7 @@ pub fn run_with(timed: usize) -> Vec<Row> {
         let (b, _) = rmse(&img, &exact, &*sto, &|i, j| {
             stbn[j * SIDE * SIDE + i] as f32
         });
-        rows.push(Row {
-            noise: name.into(),
-            variant: "stochastic-1term".into(),
-            ns_per_eval: ns,
-            rmse: Some(w),
-            rmse_stbn: Some(b),
-            bias: Some(bias),
-            speedup: Some(speedup),
-        });
+        rows.push(Row::paired(name, "stochastic-1term", t).with_error(w, b, bias));
     }
     rows.extend(batch_rows(&pts, &xis, &img, &white, &stbn));
     rows.extend(peers(&pts, &xis));
@@ -564,27 +582,14 @@ fn batch_rows(
     ];
     let mut rows = Vec::new();
     for (name, single, det, sto) in forms {
-        let (_, det_ns, over_single) = time_point_batch(pts, xis, single, det);
-        rows.push(Row::timed(
-            name,
-            "deterministic-batch",
-            det_ns,
-            Some(over_single),
-        ));
-        let (_, sto_ns, speedup) = time_batch_pair(pts, xis, det, sto);
+        let t = time_point_batch(pts, xis, single, det);
+        rows.push(Row::paired(name, "deterministic-batch", t));
+        let t = time_batch_pair(pts, xis, det, sto);
         let mut exact = vec![0.0f32; img.len()];
         det(img, &[], &mut exact);
         let (w, bias) = rmse_batch(img, &exact, sto, &|i, j| white[j * SIDE * SIDE + i]);
         let (b, _) = rmse_batch(img, &exact, sto, &|i, j| stbn[j * SIDE * SIDE + i] as f32);
-        rows.push(Row {
-            noise: name.into(),
-            variant: "stochastic-batch".into(),
-            ns_per_eval: sto_ns,
-            rmse: Some(w),
-            rmse_stbn: Some(b),
-            bias: Some(bias),
-            speedup: Some(speedup),
-        });
+        rows.push(Row::paired(name, "stochastic-batch", t).with_error(w, b, bias));
     }
     rows
 }
@@ -595,7 +600,7 @@ fn rmse_batch(
     exact: &[f32],
     sto: Batch,
     xi: &dyn Fn(usize, usize) -> f32,
-) -> (BTreeMap<String, f64>, f64) {
+) -> (Errors, f64) {
     let mut out = BTreeMap::new();
     let mut bias = 0.0;
     let mut v = vec![0.0f32; pts.len()];
@@ -702,13 +707,13 @@ pub fn goals(rows: &[Row]) -> Vec<Goal> {
         let fastest_peer = rows
             .iter()
             .filter(|r| r.noise == noise && !OURS.contains(&r.variant.as_str()))
-            .filter_map(|r| r.speedup.map(|s| (s, &r.variant)))
+            .filter_map(|r| r.speedup.map(|s| (s, r)))
             .max_by(|a, b| a.0.total_cmp(&b.0));
         if let Some((s, peer)) = fastest_peer {
             out.push(Goal {
                 what: format!("{noise} deterministic"),
                 goal: goal.into(),
-                measured: format!("{s:.2}× the time of {peer}"),
+                measured: format!("{s:.2}× the time of {}{}", peer.variant, spread(peer)),
                 met: s < 1.0,
             });
         }
@@ -716,15 +721,19 @@ pub fn goals(rows: &[Row]) -> Vec<Goal> {
     for (noise, want) in PAPER_SPEEDUPS {
         // The batch forms' estimator against the deterministic batch: the CPU's counterpart
         // of the paper's GPU, where a warp evaluates its pixels' points side by side.
-        if let Some(s) = find(noise, "stochastic-batch").and_then(|r| r.speedup) {
+        if let Some(r) = find(noise, "stochastic-batch")
+            && let Some(s) = r.speedup
+        {
             out.push(Goal {
                 what: format!("{noise} speedup (batch)"),
                 goal: format!("≥ {want}×"),
-                measured: format!("{s:.2}×"),
+                measured: format!("{s:.2}×{}", spread(r)),
                 met: s >= want,
             });
         }
-        if let Some(s) = find(noise, "stochastic").and_then(|r| r.speedup) {
+        if let Some(r) = find(noise, "stochastic")
+            && let Some(s) = r.speedup
+        {
             let window = match (
                 noise,
                 find(noise, "deterministic"),
@@ -738,12 +747,21 @@ pub fn goals(rows: &[Row]) -> Vec<Goal> {
             out.push(Goal {
                 what: format!("{noise} speedup"),
                 goal: format!("≥ {want}×"),
-                measured: format!("{s:.2}×{window}"),
+                measured: format!("{s:.2}×{}{window}", spread(r)),
                 met: s >= want,
             });
         }
     }
     out
+}
+
+/// The spread of a row's speedup over the middle rounds, for a goal's line (empty where the
+/// row has none): a verdict whose goal lies inside it is the machine's drift as much as the
+/// code's.
+fn spread(r: &Row) -> String {
+    r.speedup_spread
+        .map(|[lo, hi]| format!(" (middle rounds {lo:.2}–{hi:.2}×)"))
+        .unwrap_or_default()
 }
 
 /// What the smooth-Voronoi estimator's speedup asks of the full function, from this run's
@@ -842,7 +860,16 @@ mod tests {
         let rows = vec![
             Row::timed("perlin3", "stochastic", 13.0, Some(1.3)),
             Row::timed("perlin3", "deterministic-batch", 3.0, Some(4.0)),
-            Row::timed("perlin3", "stochastic-batch", 1.5, Some(2.0)),
+            Row::paired(
+                "perlin3",
+                "stochastic-batch",
+                Paired {
+                    a_ns: 3.0,
+                    b_ns: 1.5,
+                    ratio: 2.0,
+                    spread: [1.8, 2.1],
+                },
+            ),
             Row::timed("fbm3", "stochastic-batch", 3.0, Some(11.9)),
             Row::timed("worley3", "deterministic", 50.0, None),
             Row::timed("worley3", "deterministic-batch", 12.0, Some(4.2)),
@@ -852,7 +879,12 @@ mod tests {
         let get = |what: &str| g.iter().find(|g| g.what == what).cloned();
         let b = get("perlin3 speedup (batch)").unwrap();
         assert!(b.met);
-        assert_eq!((b.goal.as_str(), b.measured.as_str()), ("≥ 1.9×", "2.00×"));
+        // With the spread of the middle rounds, which here straddles the goal.
+        assert_eq!(
+            (b.goal.as_str(), b.measured.as_str()),
+            ("≥ 1.9×", "2.00× (middle rounds 1.80–2.10×)")
+        );
+        assert_eq!(b.measured, format!("2.00×{}", spread(&rows[2])));
         assert!(
             !get("perlin3 speedup").unwrap().met,
             "the single-point line stands apart"
@@ -862,5 +894,19 @@ mod tests {
         let w = get("worley3 deterministic").unwrap();
         assert!(w.met);
         assert_eq!(w.measured, "0.62× the time of noise-functions");
+    }
+
+    #[test]
+    fn paired_times_give_the_median_ratio_and_the_middle_rounds_spread() {
+        // One chunk a round: `a` takes 1 s, `b` takes the next of these (the first is the
+        // warm-up round's), so the rounds' ratios are 1/b.
+        let pts = vec![[0.0f32; 3]; CHUNK];
+        let xis = vec![0.0f32; CHUNK];
+        let mut b_times = [9.0, 0.5, 0.2, 0.25, 1.0, 0.4, 0.125, 2.0, 0.1, 0.3].into_iter();
+        let t = time_passes(&pts, &xis, |_, _| 1.0, |_, _| b_times.next().unwrap());
+        // Ratios in order: 0.5, 1, 2, 2.5, 3.33, 4, 5, 8, 10 (the warm-up's 1/9 is dropped).
+        assert_eq!(t.ratio, 1.0 / 0.3);
+        assert_eq!(t.spread, [2.0, 5.0]);
+        assert_eq!((t.a_ns, t.b_ns), (1e9 / CHUNK as f64, 0.3e9 / CHUNK as f64));
     }
 }
