@@ -306,19 +306,36 @@ fn rmse(
     sto: &dyn Fn([f32; 3], f32) -> f32,
     xi: &dyn Fn(usize, usize) -> f32,
 ) -> (Errors, f64) {
+    errors(exact, |j, out| {
+        for (i, (o, p)) in out.iter_mut().zip(pts).enumerate() {
+            *o = sto(*p, xi(i, j));
+        }
+    })
+}
+
+/// RMSE at each of [`KS`] samples and the bias at the last, of the estimates `sample(j, out)`
+/// writes (sample `j` of every point) against `exact`.
+fn errors(exact: &[f32], mut sample: impl FnMut(usize, &mut [f32])) -> (Errors, f64) {
+    let n = exact.len();
     let mut out = BTreeMap::new();
     let mut bias = 0.0;
+    let mut v = vec![0.0f32; n];
     for &k in &KS {
-        let mut se = 0.0;
-        let mut me = 0.0;
-        for (i, p) in pts.iter().enumerate() {
-            let mean = (0..k).map(|j| sto(*p, xi(i, j)) as f64).sum::<f64>() / k as f64;
-            let e = mean - exact[i] as f64;
-            se += e * e;
-            me += e;
+        let mut sum = vec![0.0f64; n];
+        for j in 0..k {
+            sample(j, &mut v);
+            for (s, &v) in sum.iter_mut().zip(&v) {
+                *s += v as f64;
+            }
         }
-        out.insert(k.to_string(), (se / pts.len() as f64).sqrt());
-        bias = me / pts.len() as f64;
+        let (mut se, mut me) = (0.0, 0.0);
+        for (s, &e) in sum.iter().zip(exact) {
+            let d = s / k as f64 - e as f64;
+            se += d * d;
+            me += d;
+        }
+        out.insert(k.to_string(), (se / n as f64).sqrt());
+        bias = me / n as f64;
     }
     (out, bias)
 }
@@ -601,28 +618,10 @@ fn rmse_batch(
     sto: Batch,
     xi: &dyn Fn(usize, usize) -> f32,
 ) -> (Errors, f64) {
-    let mut out = BTreeMap::new();
-    let mut bias = 0.0;
-    let mut v = vec![0.0f32; pts.len()];
-    for &k in &KS {
-        let mut sum = vec![0.0f64; pts.len()];
-        for j in 0..k {
-            let x: Vec<f32> = (0..pts.len()).map(|i| xi(i, j)).collect();
-            sto(pts, &x, &mut v);
-            for (s, &v) in sum.iter_mut().zip(&v) {
-                *s += v as f64;
-            }
-        }
-        let (mut se, mut me) = (0.0, 0.0);
-        for (s, &e) in sum.iter().zip(exact) {
-            let d = s / k as f64 - e as f64;
-            se += d * d;
-            me += d;
-        }
-        out.insert(k.to_string(), (se / pts.len() as f64).sqrt());
-        bias = me / pts.len() as f64;
-    }
-    (out, bias)
+    errors(exact, |j, out| {
+        let x: Vec<f32> = (0..pts.len()).map(|i| xi(i, j)).collect();
+        sto(pts, &x, out);
+    })
 }
 
 /// One goal of the report (issue 7), checked against a run's rows.
