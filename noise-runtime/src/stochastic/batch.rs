@@ -320,6 +320,8 @@ mod tests {
             Fractal::new(5, 2.5, 0.6),
             Fractal::new(4, 1.0, 1.0),
             Fractal::new(3, f32::NAN, f32::NAN),
+            // Frequencies that overflow to infinity within the octaves.
+            Fractal::new(20, 1000.0, -3.0),
         ];
         for path in paths() {
             for f in fractals {
