@@ -214,9 +214,9 @@ struct Paired {
 }
 
 /// Two functions timed together: ns per call of each (the median over rounds) and the median
-/// over rounds of the ratio of their times, with its spread. A round runs both over all 65 536 random points
-/// (so branch predictors cannot learn the sequence), interleaved in chunks of 2048, the order
-/// alternating from chunk to chunk. On a shared machine the clock and the neighbours' load
+/// over rounds of the ratio of their times, with its spread. A round runs both over all
+/// 65 536 random points (so branch predictors cannot learn the sequence), interleaved in
+/// chunks of 2048, the order alternating from chunk to chunk. On a shared machine the clock and the neighbours' load
 /// drift over seconds: two functions timed one after the other (as criterion does) can be
 /// measured at different speeds, while interleaved chunks, tens of microseconds apart, see
 /// the same machine.

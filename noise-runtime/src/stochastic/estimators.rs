@@ -151,7 +151,7 @@ const FIXED_BITS: u32 = 23;
 /// which lie in `[0, 1]` up to an ulp. A weight a little above 1 gives a cut a little above
 /// `l`, so the upper side is always taken, as for 1; nothing wraps into a panic.
 #[inline(always)]
-fn fixed(t: f32) -> u64 {
+pub(crate) fn fixed(t: f32) -> u64 {
     (t + 1.0).to_bits().wrapping_sub(0x3f80_0000) as u64
 }
 

@@ -1,13 +1,13 @@
 //! The batch kernels on eight AVX2 lanes: each step of the single-point function as a plain
 //! loop over `[f32; 8]`, which LLVM compiles to one AVX2 instruction, plus the lane
 //! operations of [`Avx2`] it does not make well itself (the gradient table read, the
-//! fixed-point cut and decision of the corner choice, the range mask). The helpers are `#[inline(always)]` so that they, and their loops, are
-//! compiled inside the `#[target_feature(enable = "avx2")]` entry points; they take the
-//! [`Avx2`] token that the lane operations require. A lane whose coordinates leave the split
-//! range (`|x| ≥ 2^22`, NaN, infinite) is computed again by the single-point function, which
-//! handles it exactly.
+//! fixed-point cut and decision of the corner choice, the range mask). The helpers are
+//! `#[inline(always)]` so that they, and their loops, are compiled inside the
+//! `#[target_feature(enable = "avx2")]` entry points; they take the [`Avx2`] token that the
+//! lane operations require. A lane whose coordinates leave the split range (`|x| ≥ 2^22`,
+//! NaN, infinite) is computed again by the single-point function, which handles it exactly.
 
-use super::super::estimators::sanitize_xi;
+use super::super::estimators::{fixed, sanitize_xi};
 use super::super::fractal::{Fractal, octave_seed};
 use super::super::hash::{CORNER_MUL, PRIME};
 use super::super::perlin::GRAD3_COLUMNS;
@@ -148,15 +148,15 @@ fn edge(
 #[inline(always)]
 fn perlin3_stochastic_lanes<const UNIT: bool>(cpu: Avx2, p: &[F8; 3], seed: &U8, xi: &F8) -> F8 {
     let (cell, f) = split(p);
-    // Weights and ξ in fixed point: the bits of `1 + v` less those of 1.
+    // Weights and ξ in the corner choice's fixed point (`estimators::fixed`).
     let mut t = [[0u32; W]; 3];
     let mut r = [0u32; W];
     for i in 0..W {
         for a in 0..3 {
-            t[a][i] = (fade(f[a][i]) + 1.0).to_bits().wrapping_sub(0x3f80_0000);
+            t[a][i] = fixed(fade(f[a][i])) as u32;
         }
         let x = if UNIT { xi[i] } else { sanitize_xi(xi[i]) };
-        r[i] = (x + 1.0).to_bits().wrapping_sub(0x3f80_0000).min(ONE - 1);
+        r[i] = (fixed(x) as u32).min(ONE - 1);
     }
     let mut l = [ONE; W];
     let mut h = *seed;
@@ -196,7 +196,10 @@ macro_rules! chunks {
             *o = $one;
         }
     }};
-    ($points:expr, $xi:expr, $out:expr, |$p:ident, $x:ident| $lanes:expr, |$i:ident| $one:expr) => {{
+    (
+        $points:expr, $xi:expr, $out:expr,
+        |$p:ident, $x:ident| $lanes:expr, |$i:ident| $one:expr
+    ) => {{
         let (points, xi, out): (&[[f32; 3]], &[f32], &mut [f32]) = ($points, $xi, $out);
         let (chunks, _) = points.as_chunks::<W>();
         let (xis, _) = xi.as_chunks::<W>();
