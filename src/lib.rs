@@ -9,6 +9,7 @@
 //! - inline: `noisebake::noise_texture!(pub STBN = stbn { dims: [64, 64, 16], seed: 7, format: u16 });`
 #![no_std]
 
+#[cfg(feature = "macros")]
 pub use noise_macros::noise_texture;
 pub use noise_runtime::*;
 

@@ -1,26 +1,28 @@
 //! # build-assets
 //!
-//! The generator side of noisebake: the spec, void and cluster in N-D, baselines, the cache,
-//! exports and analysis, and the `noisebake` command-line tool. Everything here is a pure
-//! function of the spec: same spec, same bytes, on any machine and thread count.
+//! The part of noisebake that runs inside a game's build: a spec (from `noise.toml` or the
+//! `noise_texture!` macro) is validated ([`spec`]), generated ([`generate`]: void and cluster
+//! in N dimensions, FAST, baselines), stored in a content-addressed [`cache`] and turned into
+//! Rust items that embed the bytes ([`codegen`]). [`bake()`] does all of it for a build script.
+//!
+//! Everything here is a pure function of the spec: the same spec gives the same bytes on any
+//! machine, thread count and build profile. The command-line tool, reports, analysis and plots
+//! live in the `noisebake-cli` crate, so a game's build compiles none of them; see
+//! `ARCHITECTURE.md` for the crates and what may depend on what.
 
+pub mod bake;
 pub mod baselines;
+pub mod cache;
+pub mod codegen;
+pub mod export;
 pub mod fast;
 pub mod generate;
-pub mod points;
 pub mod rng;
 pub mod spec;
 pub mod texture;
 pub mod vac;
 
+pub use bake::{Bake, BakeError, bake};
 pub use generate::{ALGORITHM_VERSION, generate};
 pub use spec::{SpecError, TextureSpec};
 pub use texture::Texture;
-pub mod analysis;
-pub mod bake;
-pub mod cache;
-pub mod codegen;
-pub mod export;
-pub mod report;
-
-pub use bake::{Bake, BakeError, bake};

@@ -1,10 +1,8 @@
-//! Writing textures out: NumPy `.npy`, PNG slices and raw `.bin` (DESIGN.md, "CLI and file
-//! contract"). Every writer goes through a temporary file and a rename, so an interrupted run
-//! never leaves a half-written file under the final name.
+//! Writing textures out: NumPy `.npy` and raw little-endian `.bin`. Every writer goes through a
+//! temporary file and a rename, so an interrupted run never leaves a half-written file under the
+//! final name. (PNG slices and plots are the CLI's: `noisebake-cli`.)
 
 pub mod npy;
-pub mod plot;
-pub mod png;
 
 use std::io;
 use std::path::Path;

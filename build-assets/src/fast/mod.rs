@@ -10,10 +10,11 @@
 //! - [`filter`]: spatial and temporal filters (box, Gaussian, binomial, EMA with history
 //!   rejection, eq. 14–17) and the footprint of `F`;
 //! - [`optimize`]: exact sequential swaps on conflict-free tiles (eq. 8);
-//! - [`paper`]: the paper's GPU schedule (random pairings, all at once), a baseline for reports.
+//! - `paper` (feature `research`): the paper's GPU schedule (random pairings, all at once), a baseline for reports.
 
 pub mod filter;
 pub mod optimize;
+#[cfg(feature = "research")]
 pub mod paper;
 pub mod space;
 
@@ -165,8 +166,9 @@ pub fn generate_within(
     )
 }
 
-/// Runs the paper's own schedule ([`paper`]) from the same stratified start as
+/// Runs the paper's own schedule ([`paper`](self::paper)) from the same stratified start as
 /// [`generate_within`] (a baseline for reports; baking never uses it).
+#[cfg(feature = "research")]
 pub fn paper_baseline(
     params: &FastParams,
     dims: &[usize],
@@ -184,7 +186,7 @@ pub fn paper_baseline(
 }
 
 /// Encodes samples for storage. Uniform scalars are the ranks of their slice (so unorm formats
-/// are exactly flat, DESIGN.md's rank encoding); other scalars and `[0, 1)` vectors are stored as
+/// are exactly flat: the rank encoding of [`crate::spec::encode_ranks`]); other scalars and `[0, 1)` vectors are stored as
 /// values; unit vectors as `0.5 + 0.5·v` (like the public STBN/FAST textures: unorm values
 /// `round(·(2^bits − 1))`), Gaussian scalars raw (f32 only).
 pub fn encode(params: &FastParams, dims: &[usize], samples: &[f64], scalar: Scalar) -> Vec<u8> {

@@ -87,6 +87,18 @@ fn convert_table(t: &DeTable<'_>) -> Result<Table, SpecError> {
     Ok(out)
 }
 
+/// Parses one TOML value (`1.9`, `[0, 1]`, `{ axes = [2], sigma = 1.9 }`, `"u16"`), as the
+/// CLI's `--key value` flags take them; `None` when `text` is not a TOML value.
+pub fn parse_value(text: &str) -> Option<Value> {
+    let line = format!("v = {text}");
+    let doc = DeTable::parse(&line).ok()?;
+    let top = convert_table(doc.get_ref()).ok()?;
+    match top.as_slice() {
+        [(k, v)] if k.value == "v" => Some(v.value.clone()),
+        _ => None,
+    }
+}
+
 /// Parses and validates a spec file's text. Errors carry byte spans into `text`; use
 /// [`SpecError::render`] to show them with file, line and column.
 pub fn parse_toml(text: &str) -> Result<SpecFile, SpecError> {

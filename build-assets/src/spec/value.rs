@@ -60,30 +60,4 @@ impl Value {
             Value::Table(_) => "a table",
         }
     }
-
-    /// Converts a parsed TOML value (no spans: TOML spans are attached by the file reader).
-    pub fn from_toml(v: &toml::Value) -> Result<Value, String> {
-        Ok(match v {
-            toml::Value::Integer(i) => Value::Int(*i),
-            toml::Value::Float(f) => Value::Float(*f),
-            toml::Value::String(s) => Value::Str(s.clone()),
-            toml::Value::Boolean(b) => Value::Bool(*b),
-            toml::Value::Array(a) => Value::Array(
-                a.iter()
-                    .map(|x| Value::from_toml(x).map(Spanned::bare))
-                    .collect::<Result<_, _>>()?,
-            ),
-            toml::Value::Table(t) => Value::Table(
-                t.iter()
-                    .map(|(k, x)| {
-                        Ok((
-                            Spanned::bare(k.clone()),
-                            Spanned::bare(Value::from_toml(x)?),
-                        ))
-                    })
-                    .collect::<Result<_, String>>()?,
-            ),
-            toml::Value::Datetime(_) => return Err("dates are not spec values".into()),
-        })
-    }
 }

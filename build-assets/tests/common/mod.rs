@@ -24,16 +24,3 @@ pub fn error(body: &str) -> String {
         Err(e) => e.render("noise.toml", &text),
     }
 }
-
-/// `../shared/` seen from the workspace root, or a clear panic.
-pub fn shared(path: &str) -> std::path::PathBuf {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared")
-        .join(path);
-    assert!(
-        p.exists(),
-        "{} is missing: the tests read ../shared/ beside the workspace",
-        p.display()
-    );
-    p
-}

@@ -2,9 +2,9 @@
 //! cell borders F2 − F1, the foam SDF of CNJ eq. 12, cell colours), and CNJ points next to random
 //! jitter with their point-set quality (ν_eff, ā, q; CNJ §2.4).
 
-use build_assets::analysis::points::analyze;
-use build_assets::points::{Method, generate};
 use noisebake::cnj::{Cnj2, Region2};
+use noisebake_cli::analysis::points::analyze;
+use noisebake_cli::points::{Method, generate};
 use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;

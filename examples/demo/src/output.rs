@@ -1,8 +1,8 @@
 //! Images, convergence plots, `index.html` and the terminal summary.
 
 use crate::{AppResult, Config};
-use build_assets::export::plot::{PALETTE, Series, line_plot};
 use build_assets::export::write_atomic;
+use noisebake_cli::export::plot::{PALETTE, Series, line_plot};
 use std::fmt::Write as _;
 use std::path::Path;
 

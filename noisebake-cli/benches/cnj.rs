@@ -6,9 +6,9 @@
 //!
 //! `cargo bench -p build-assets --bench cnj`
 
-use build_assets::points::{Method, generate};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use noise_runtime::cnj::{Cnj2, Cnj3};
+use noisebake_cli::points::{Method, generate};
 use rayon::prelude::*;
 use std::hint::black_box;
 use std::time::Duration;

@@ -110,7 +110,7 @@ pub fn line_plot(path: &Path, series: &[Series], log_y: bool) -> Result<[f64; 4]
             line(&mut img, map(w[0].0, w[0].1), map(w[1].0, w[1].1), s.color);
         }
     }
-    crate::export::write_atomic(path, &{
+    build_assets::export::write_atomic(path, &{
         let mut bytes = Vec::new();
         img.write_to(
             &mut std::io::Cursor::new(&mut bytes),

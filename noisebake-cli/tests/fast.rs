@@ -2,10 +2,10 @@
 //! independence, and the paper's claims about error after filtering (§6).
 
 mod common;
-use build_assets::analysis::filtered::{Denoiser, filtered_rmse};
 use build_assets::fast::{self, Combine, FastParams, Filter};
-use build_assets::report::fast::scalar_params;
 use common::{error, gen_tex};
+use noisebake_cli::analysis::filtered::{Denoiser, filtered_rmse};
+use noisebake_cli::report::fast::scalar_params;
 
 /// Asserts that every slice of `texels` 3-vectors in `after` is a permutation of the same slice
 /// in `before` (bit for bit).
@@ -208,7 +208,7 @@ fn vector_masks_store_unit_vectors_like_the_public_textures() {
 #[test]
 fn paper_schedule_permutes_slices_and_lowers_the_loss_when_capped() {
     use build_assets::fast::paper::Schedule;
-    let mut p = build_assets::report::fast::cosine_params();
+    let mut p = noisebake_cli::report::fast::cosine_params();
     p.spatial = Filter::Box { size: 3 };
     let dims = [16, 16, 4];
     let schedule = Schedule {

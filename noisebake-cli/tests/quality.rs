@@ -2,10 +2,10 @@
 //! per-slice histograms and per-pixel convergence (STBN §4.2, Fig. 5, 6, 8).
 
 mod common;
-use build_assets::analysis::{MaskReport, analyze, spatial_lf};
-use build_assets::export::png::read_gray;
 use build_assets::generate::blue2d_ranks;
-use common::{gen_tex, shared};
+use common::{gen_tex, testdata};
+use noisebake_cli::analysis::{MaskReport, analyze, spatial_lf};
+use noisebake_cli::export::png::read_gray;
 
 fn report(kind: &str, extra: &str) -> MaskReport {
     analyze(&gen_tex(&format!(
@@ -13,7 +13,7 @@ fn report(kind: &str, extra: &str) -> MaskReport {
     )))
 }
 
-fn conv<'a>(r: &'a MaskReport, name: &str) -> &'a build_assets::analysis::Convergence {
+fn conv<'a>(r: &'a MaskReport, name: &str) -> &'a noisebake_cli::analysis::Convergence {
     r.convergence.iter().find(|c| c.integrand == name).unwrap()
 }
 
@@ -107,7 +107,7 @@ fn every_u8_slice_value_appears_equally_often() {
 
 #[test]
 fn blue2d_has_no_more_low_frequency_power_than_the_cc0_reference() {
-    let (w, h, v) = read_gray(&shared("reference/peters-cc0/bluenoise-64x64-16bit.png")).unwrap();
+    let (w, h, v) = read_gray(&testdata("peters-cc0/bluenoise-64x64-16bit.png")).unwrap();
     let reference = spatial_lf(&v, w, h);
     // The generator, not one lucky seed: the median over nine seeds.
     let mut ours: Vec<f64> = (0..9)
@@ -144,7 +144,7 @@ fn higher_dimensional_groupings_are_blue_along_their_groups_only() {
         let (mut low, mut all) = (0.0, 0.0);
         for start in (0..n).filter(|i| (i / stride).is_multiple_of(dims[a])) {
             let seq: Vec<f64> = (0..dims[a]).map(|k| v[start + k * stride]).collect();
-            let p = build_assets::analysis::dft::power1d(&seq);
+            let p = noisebake_cli::analysis::dft::power1d(&seq);
             low += p[1] + p[dims[a] - 1];
             all += p[1..].iter().sum::<f64>() * 2.0 / (dims[a] - 1) as f64;
         }

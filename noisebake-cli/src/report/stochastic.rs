@@ -9,8 +9,8 @@
 //! the same points: 3D Perlin, fBm with 10 octaves, Worley F1, and their cellular F1 against
 //! our smooth Voronoi (neither has smooth Voronoi; it is the goal's nearest stand-in).
 
-use crate::rng::SplitMix64;
-use crate::spec::{Format, Histogram, Kind, TextureSpec};
+use build_assets::rng::SplitMix64;
+use build_assets::spec::{Format, Histogram, Kind, TextureSpec};
 use noise_runtime::stochastic::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -453,7 +453,7 @@ pub fn run_with(timed: usize) -> Vec<Row> {
     let img: Vec<[f32; 3]> = (0..SIDE * SIDE)
         .map(|i| [(i % SIDE) as f32 * 0.173, (i / SIDE) as f32 * 0.173, 0.37])
         .collect();
-    let stbn = crate::generate(
+    let stbn = build_assets::generate(
         &TextureSpec {
             name: "XI".into(),
             kind: Kind::Stbn {

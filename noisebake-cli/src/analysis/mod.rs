@@ -12,7 +12,7 @@ pub mod dft;
 pub mod filtered;
 pub mod points;
 
-use crate::texture::Texture;
+use build_assets::texture::Texture;
 use serde::Serialize;
 
 /// Non-zero frequencies at or below this (cycles per texel, Nyquist = 0.5) count as low.

@@ -6,11 +6,12 @@
 //! noisebake analyze FILE.npy
 //! ```
 
-use build_assets::export::{npy, png, write_atomic};
+use build_assets::export::{npy, write_atomic};
 use build_assets::spec::{self, Span, Spanned, Table, TextureSpec, Value};
 use build_assets::{Texture, generate};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
+use noisebake_cli::export::png;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -247,10 +248,7 @@ fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
 /// A flag value in TOML syntax (`1.9`, `[0, 1]`, `{ axes = [2], sigma = 1.9 }`, `true`); anything
 /// that does not parse as TOML is a bare string (`u16`, `stbn`, `slice`).
 fn parse_value(raw: &str) -> Value {
-    toml::from_str::<toml::Table>(&format!("v = {raw}"))
-        .ok()
-        .and_then(|t| t.get("v").and_then(|v| Value::from_toml(v).ok()))
-        .unwrap_or_else(|| Value::Str(raw.to_string()))
+    spec::parse_value(raw).unwrap_or_else(|| Value::Str(raw.to_string()))
 }
 
 fn gen_cmd(args: &[String]) -> Result<(), String> {
@@ -286,7 +284,7 @@ fn analyze(file: &Path, channels_last: bool) -> Result<(), String> {
     let bytes = std::fs::read(file).map_err(|e| format!("{}: {e}", file.display()))?;
     let t = npy::from_npy(&bytes, "mask", channels_last)
         .map_err(|e| format!("{}: {e}", file.display()))?;
-    let report = build_assets::analysis::analyze(&t);
+    let report = noisebake_cli::analysis::analyze(&t);
     println!(
         "{}",
         serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
@@ -314,8 +312,8 @@ fn report(
         ));
     }
     if matches!(section, "all" | "cnj") {
-        use build_assets::analysis::points::{analyze, mean};
-        use build_assets::points::{METHODS, Method, generate};
+        use noisebake_cli::analysis::points::{analyze, mean};
+        use noisebake_cli::points::{METHODS, Method, generate};
         println!("point sets (CNJ Table 2): 1000 points, mean of 20 seeds");
         println!(
             "  {:<15} {:>7} {:>8} {:>9} {:>12}",
@@ -337,7 +335,7 @@ fn report(
     }
     if matches!(section, "all" | "fast") {
         println!("FAST (filter-adapted masks):");
-        let r = build_assets::report::fast::run(out, full, paper, &mut log)?;
+        let r = noisebake_cli::report::fast::run(out, full, paper, &mut log)?;
         println!("  error after filtering, 64x64x16 scalar (steps, Gaussian σ 1.3435, EMA α 0.1):");
         println!(
             "  {:<24} {:>14} {:>10} {:>14}",
@@ -356,7 +354,7 @@ fn report(
     }
     let mut rows_json = None;
     if matches!(section, "all" | "stochastic") {
-        use build_assets::report::stochastic;
+        use noisebake_cli::report::stochastic;
         println!("stochastic noise (3D unless named, single thread, random-order points):");
         println!(
             "  (ns/eval: median of 9 rounds; speedup: our deterministic time / this one, the median over 9 rounds"
@@ -440,7 +438,7 @@ fn report(
 }
 
 fn points_cmd(method: &str, n: usize, seed: u64, out: &Path, analyze: bool) -> Result<(), String> {
-    use build_assets::points::{METHODS, Method, generate};
+    use noisebake_cli::points::{METHODS, Method, generate};
     let m = Method::parse(method).ok_or_else(|| {
         format!(
             "unknown point method `{method}`; valid: {}",
@@ -465,7 +463,7 @@ fn points_cmd(method: &str, n: usize, seed: u64, out: &Path, analyze: bool) -> R
         secs * 1e3
     );
     if analyze {
-        let s = build_assets::analysis::points::analyze(&pts);
+        let s = noisebake_cli::analysis::points::analyze(&pts);
         println!(
             "ν_eff {:.3}  anisotropy {:.2}  q {:.5}",
             s.nu_eff, s.anisotropy, s.q

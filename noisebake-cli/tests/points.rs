@@ -2,8 +2,8 @@
 //! paper's ν_eff ≈ 0.70, ā ≈ 71.8, q ≈ 0.0097; random jitter and Poisson-disk sampling score a
 //! lower q on the same metric.
 
-use build_assets::analysis::points::{analyze, mean};
-use build_assets::points::{Method, generate};
+use noisebake_cli::analysis::points::{analyze, mean};
+use noisebake_cli::points::{Method, generate};
 
 fn table(m: Method) -> (f64, f64, f64) {
     let stats: Vec<_> = (0..20).map(|s| analyze(&generate(m, 1000, s))).collect();

@@ -3,8 +3,8 @@
 //!
 //! `cargo run --release -p build-assets --example cnj_table2`
 
-use build_assets::analysis::points::{analyze, mean};
-use build_assets::points::{Method, generate};
+use noisebake_cli::analysis::points::{analyze, mean};
+use noisebake_cli::points::{Method, generate};
 use std::time::Instant;
 
 fn main() {

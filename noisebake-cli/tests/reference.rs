@@ -258,8 +258,8 @@ fn the_truncated_kernel_matches_the_reference_where_it_covers_the_torus() {
 /// dropped weight (plus the fixed-point rounding), and quality (spatial and temporal low-frequency power) is unchanged.
 #[test]
 fn truncation_error_is_bounded_and_quality_is_unchanged() {
-    use build_assets::analysis::analyze;
     use build_assets::spec::{Format, encode_ranks};
+    use noisebake_cli::analysis::analyze;
     let sizes = [48, 48, 8];
     let groups = vec![g(&[0, 1]), g(&[2])];
     let axes: Vec<Axis> = sizes

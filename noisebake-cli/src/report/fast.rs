@@ -3,8 +3,8 @@
 
 use crate::analysis::filtered::{Denoiser, filtered_rmse};
 use crate::export::plot::{PALETTE, Series, line_plot};
-use crate::fast::{self, Combine, FastParams, Filter, Outcome, SampleSpace, TemporalFilter};
-use crate::spec::{Format, Histogram, Kind, TextureSpec};
+use build_assets::fast::{self, Combine, FastParams, Filter, Outcome, SampleSpace, TemporalFilter};
+use build_assets::spec::{Format, Histogram, Kind, TextureSpec};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
@@ -261,7 +261,7 @@ fn baseline(kind: Kind, dims: &[usize]) -> Vec<f64> {
         seed: 1,
         format: Format::F32,
     };
-    crate::generate(&spec, &mut |_, _| {}).values()
+    build_assets::generate(&spec, &mut |_, _| {}).values()
 }
 
 /// Errors after filtering of a scalar mask (values in `[0, 1)`).
