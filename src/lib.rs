@@ -1,12 +1,165 @@
 //! # noisebake
 //!
-//! High-quality noise baked into the binary at build time. This facade re-exports the `no_std`
-//! runtime ([`noise_runtime`]) and the `noise_texture!` macro.
+//! High-quality noise baked into the game binary at build time: blue-noise masks by void and
+//! cluster (2D, spatiotemporal, any axis grouping), FAST filter-adapted masks, low-discrepancy
+//! grids, curl-noise jittered points and stochastic procedural noise, sampled through a small
+//! `no_std`, dependency-free runtime. Baked masks are `static` tables: no file to ship, no
+//! start-up cost.
 //!
-//! Two ways in, one spec and one cache:
-//! - a `noise.toml` baked by `build_assets::bake("noise.toml")` in `build.rs`, then
-//!   `noisebake::include_textures!();` in the crate;
-//! - inline: `noisebake::noise_texture!(pub STBN = stbn { dims: [64, 64, 16], seed: 7, format: u16 });`
+//! This facade re-exports the runtime ([`noise_runtime`]), [`include_textures!`] and, with the
+//! default feature `macros`, the `noise_texture!` macro.
+//!
+//! # Set-up
+//!
+//! ```toml
+//! # Cargo.toml of the game
+//! [dependencies]
+//! noisebake = "0.1"
+//!
+//! [build-dependencies]   # only for the build.rs way in
+//! build-assets = "0.1"
+//!
+//! # Build scripts and proc macros compile at opt-level 0 unless told otherwise, and void and
+//! # cluster runs 8-10x slower there. These sections go in the *workspace's* Cargo.toml.
+//! [profile.dev.package.build-assets]
+//! opt-level = 3
+//! [profile.release.package.build-assets]
+//! opt-level = 3
+//! ```
+//!
+//! Features of this crate:
+//! - `macros` (default): `noise_texture!`. It generates at compile time, so it compiles the
+//!   generator and `syn` into the build. A game that bakes only through `build.rs`, or only
+//!   calls the runtime's functions, sets `default-features = false` and compiles neither.
+//!
+//! ## Two ways in, one spec and one cache
+//!
+//! A `noise.toml` baked by the build script, included as one `pub static` per texture:
+//!
+//! ```toml
+//! # noise.toml, beside the game's Cargo.toml
+//! [[texture]]
+//! name   = "STBN"
+//! kind   = "stbn"
+//! dims   = [64, 64, 16]
+//! seed   = 7
+//! format = "u16"
+//! ```
+//!
+//! ```ignore
+//! // build.rs
+//! fn main() {
+//!     build_assets::bake("noise.toml").unwrap_or_else(|e| panic!("{e}"));
+//! }
+//!
+//! // src/main.rs
+//! noisebake::include_textures!();
+//! let v: u16 = STBN.get(x, y, frame);
+//! ```
+//!
+//! Or inline, with the same keys as `key: value`:
+//!
+//! ```ignore
+//! noisebake::noise_texture!(pub DITHER = blue2d { dims: [64, 64], seed: 1, sigma: 1.9 });
+//! ```
+//!
+//! Both give a typed view over bytes embedded with `include_bytes!` in a 16-byte aligned static
+//! (`Mask2<u8, 64, 64>`, `Mask3<u16, 64, 64, 16>`, `Mask4<f32, …>`, vector formats as
+//! `[u8; 3]` …). Bytes are little-endian, so every target reads the same values.
+//!
+//! ## The cache and offline builds
+//!
+//! Generated textures are stored in a content-addressed cache keyed by the canonical spec (every
+//! default filled in) and the generator version: a second build, or another crate declaring the
+//! same spec, reads the entry instead of generating. One resolver serves `build.rs`, the macro
+//! and the CLI; the first that applies:
+//! 1. the `NOISEBAKE_CACHE_DIR` environment variable;
+//! 2. a directory given in code (`build_assets::Bake::cache_dir`, the CLI's `--cache-dir`);
+//! 3. `cache_dir = "…"` at the top of the spec file, relative to it. The macro reads it from the
+//!    `noise.toml` beside the crate's `Cargo.toml` (a file holding only `cache_dir` is fine), so
+//!    both ways in find a committed cache. It must be relative and stay inside the workspace;
+//!    an absolute path is taken only from the two explicit places above;
+//! 4. `noisebake-cache/` in the workspace's target directory.
+//!
+//! `NOISEBAKE_OFFLINE=1` turns a missing entry into an error instead of a generation: commit the
+//! cache directory (step 3) and set it in CI. Entries are verified on read; a corrupt one is
+//! regenerated with a warning. A cache directory that cannot be written costs nothing when
+//! every entry is present, and otherwise sends new entries to `OUT_DIR` (or the system
+//! temporary directory, for the macro) with a warning. Generations longer than a second are
+//! announced by the build script (`cargo:warning`); the macro announces every generation and
+//! every replaced entry on stderr. A build that finds everything in the cache prints nothing.
+//!
+//! # Spec keys
+//!
+//! Every texture takes `name` (a Rust identifier; in the macro, the item name), `kind`, `dims`
+//! (x, y, then further axes), `seed` (default 0) and `format` (`"u8"` default, `"u16"`,
+//! `"f32"`; vector sample spaces of `fast` add channels: `"u8x2"`, `"u8x3"`, `"f32x4"` …).
+//! Unorm formats store rank `r` of `N` as `floor(r · 2^bits / N)`, `f32` as `(r + 0.5) / N`.
+//!
+//! | kind | what | dims | keys (defaults) |
+//! | --- | --- | --- | --- |
+//! | `blue2d` | 2D void and cluster (Ulichney) | 2 | `sigma` (1.5), `initial_density` (0.1) |
+//! | `stbn` | spatiotemporal blue noise, 2D × 1D (Wolfe et al. 2022) | 3 | `sigma_xy` (1.9), `sigma_t` (1.9), `initial_density` (0.1), `histogram` (`"volume"` \| `"slice"`) |
+//! | `vac` | void and cluster over any grouping of 1–4 axes (STBN App. B) | 1–4 | `groups` (`[{ axes = all, sigma = 1.9 }]`), `toroidal` (true, or one bool per axis), `initial_density`, `histogram` |
+//! | `white` | independent uniform values | 1–4 | — |
+//! | `independent2d` | an independent 2D mask per slice | 2–4 | `sigma` (1.9), `initial_density` |
+//! | `golden` | one 2D mask animated by `t·φ` per frame | 3 | `sigma` (1.9), `initial_density` |
+//! | `fast` | FAST filter-adapted mask, 2D or 2D × time (Donnelly et al. 2024) | 2–3 | `sample_space` (`"scalar"`, `"circle"`, `"vec2"`…`"vec4"`, `"sphere"`, `"hemisphere"`, `"cosine_hemisphere"`), `distribution` (`"uniform"`, `"tent"`, `"gauss"`; scalar only), `spatial_filter` (`{ kind = "gauss", sigma = 1.3435 }`, `{ kind = "box", size = 5 }`, `{ kind = "binomial", order = 2 }`, `{ kind = "none" }`), `temporal_filter` (`{ kind = "ema", alpha = 0.1, beta = 0.1 }` for 3 dims, `gauss`, `box`, `none`), `combine` (`"product"` or `{ separate = w }`), `iterations` (until converged) |
+//!
+//! One example per kind, in spec-file form (the macro takes the same as `key: value`):
+//!
+//! ```toml
+//! [[texture]]                 # dithering, stochastic transparency
+//! name = "DITHER"
+//! kind = "blue2d"
+//! dims = [64, 64]
+//!
+//! [[texture]]                 # temporal accumulation: STBN, each frame's histogram flat
+//! name = "STBN"
+//! kind = "stbn"
+//! dims = [64, 64, 32]
+//! format = "u16"
+//! histogram = "slice"
+//!
+//! [[texture]]                 # 4D: blue in (x, y), in time, and in a fourth axis apart
+//! name = "VAC4"
+//! kind = "vac"
+//! dims = [32, 32, 8, 4]
+//! groups = [{ axes = [0, 1], sigma = 1.9 }, { axes = [2], sigma = 1.9 }, { axes = [3], sigma = 1.9 }]
+//!
+//! [[texture]]                 # the baselines, for comparisons
+//! name = "WHITE"
+//! kind = "white"
+//! dims = [64, 64, 16]
+//!
+//! [[texture]]
+//! name = "IND2D"
+//! kind = "independent2d"
+//! dims = [64, 64, 16]
+//!
+//! [[texture]]
+//! name = "GOLDEN"
+//! kind = "golden"
+//! dims = [64, 64, 16]
+//!
+//! [[texture]]                 # FAST for a Gaussian blur and an EMA, as EA publishes it
+//! name = "FAST"
+//! kind = "fast"
+//! dims = [64, 64, 16]
+//! spatial_filter = { kind = "gauss", sigma = 1.3435 }
+//! temporal_filter = { kind = "ema", alpha = 0.1, beta = 0.1 }
+//!
+//! [[texture]]                 # FAST cosine-weighted hemisphere directions (ambient occlusion)
+//! name = "AO_DIRS"
+//! kind = "fast"
+//! dims = [32, 32, 16]
+//! format = "u8x3"
+//! sample_space = "cosine_hemisphere"
+//! spatial_filter = { kind = "box", size = 5 }
+//! ```
+//!
+//! Unknown keys, wrong types and impossible values are errors that name the key and point at
+//! its line (spec file) or token (macro).
 #![no_std]
 
 #[cfg(feature = "macros")]

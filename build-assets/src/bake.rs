@@ -1,29 +1,21 @@
 //! `bake()`: the build-script way in. Reads a spec file, fetches or generates every texture
 //! through the cache, and writes one Rust file into `OUT_DIR` for `noisebake::include_textures!()`.
 
-use crate::cache::{Cache, Source, writable};
+use crate::cache::{Locator, Source};
 use crate::codegen;
+use crate::error::{Error, Warning};
 use crate::spec::parse_toml;
-use std::fmt;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Name of the generated file in `OUT_DIR`.
 pub const GENERATED: &str = "noisebake_textures.rs";
-/// Generations longer than this print a `cargo:warning` saying what took the time.
+/// Generations longer than this are announced (a `cargo:warning` from build scripts, a line on
+/// stderr from the macro), saying what took the time.
 pub const SLOW_SECONDS: f64 = 1.0;
 
-/// A failed bake: the message says what and where (file:line for spec errors).
-#[derive(Debug, Clone, PartialEq)]
-pub struct BakeError(pub String);
-
-impl fmt::Display for BakeError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for BakeError {}
+/// A failed bake (kept as a name for [`Error`]).
+pub type BakeError = Error;
 
 /// One baked texture.
 #[derive(Debug, Clone)]
@@ -34,7 +26,7 @@ pub struct Baked {
     pub bytes: usize,
     /// From the cache or generated now.
     pub source: Source,
-    /// Seconds spent (generation or read).
+    /// Seconds spent generating (0 for a cache hit).
     pub seconds: f64,
 }
 
@@ -48,12 +40,20 @@ pub struct Report {
     /// The cache directory used.
     pub cache_dir: PathBuf,
     /// Warnings (also printed as `cargo:warning` lines when `cargo_output` is on).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Warning>,
 }
 
 /// Bakes `spec` with default options (see [`Bake`]).
-pub fn bake(spec: impl AsRef<Path>) -> Result<Report, BakeError> {
+pub fn bake(spec: impl AsRef<Path>) -> Result<Report, Error> {
     Bake::new(spec).run()
+}
+
+/// The line that announces a slow generation.
+pub fn announce(name: &str, what: &str, seconds: f64, dir: &Path) -> String {
+    format!(
+        "noisebake: generated `{name}` ({what}) in {seconds:.1} s; later builds read it from {}",
+        dir.display()
+    )
 }
 
 /// Options of a bake.
@@ -86,7 +86,7 @@ impl Bake {
     }
 
     /// The cache directory (overrides the spec file's `cache_dir` and the target dir, but not
-    /// `NOISEBAKE_CACHE_DIR`).
+    /// `NOISEBAKE_CACHE_DIR`). Any path is accepted here: it is the program's choice.
     pub fn cache_dir(mut self, dir: impl Into<PathBuf>) -> Self {
         self.cache_dir = Some(dir.into());
         self
@@ -105,7 +105,7 @@ impl Bake {
     }
 
     /// Runs the bake.
-    pub fn run(self) -> Result<Report, BakeError> {
+    pub fn run(self) -> Result<Report, Error> {
         let cargo = |line: String| {
             if self.cargo_output {
                 println!("cargo:{line}");
@@ -124,55 +124,56 @@ impl Bake {
             .out_dir
             .clone()
             .or_else(|| std::env::var_os("OUT_DIR").map(PathBuf::from))
-            .ok_or_else(|| {
-                BakeError(
-                    "OUT_DIR is not set: call bake() from a build script or give Bake::out_dir"
-                        .into(),
-                )
-            })?;
-        let text = std::fs::read_to_string(&self.spec)
-            .map_err(|e| BakeError(format!("{}: {e}", self.spec.display())))?;
-        let file = parse_toml(&text)
-            .map_err(|e| BakeError(e.render(&self.spec.display().to_string(), &text)))?;
-        let spec_dir = self.spec.parent().unwrap_or(Path::new("."));
-        let from_spec = file.cache_dir.as_ref().map(|d| spec_dir.join(d));
-        let mut cache = Cache::locate(
-            self.cache_dir.clone().or(from_spec),
-            Some(&out_dir),
-            &out_dir,
-        );
-        if !cache.offline && !writable(&cache.dir) {
-            let fallback = out_dir.join("noisebake-cache");
-            cache.warnings.push(format!(
-                "cache directory {} is not writable; using {}",
-                cache.dir.display(),
-                fallback.display()
-            ));
-            cache.dir = fallback;
-        }
+            .ok_or(Error::NoOutDir)?;
+        let text = std::fs::read_to_string(&self.spec).map_err(|source| Error::Io {
+            action: "reading the spec",
+            path: self.spec.clone(),
+            source,
+        })?;
+        let file = parse_toml(&text).map_err(|e| Error::Spec {
+            file: self.spec.clone(),
+            rendered: e.render(&self.spec.display().to_string(), &text),
+        })?;
+        let mut locator = Locator::from_env();
+        locator.out_dir = Some(out_dir.clone());
+        locator.explicit = self.cache_dir.clone();
+        locator.spec_cache_dir = file.cache_dir.clone().map(|d| (self.spec.clone(), d));
+        let mut cache = locator.resolve()?;
         let data_dir = out_dir.join("noisebake");
-        std::fs::create_dir_all(&data_dir)
-            .map_err(|e| BakeError(format!("{}: {e}", data_dir.display())))?;
+        std::fs::create_dir_all(&data_dir).map_err(|source| Error::Io {
+            action: "creating",
+            path: data_dir.clone(),
+            source,
+        })?;
         let mut code = String::from("// Generated by build_assets::bake(); do not edit.\n\n");
         let mut textures = Vec::new();
         let analyzer = std::env::var_os("RUST_ANALYZER_INTERNALS_DO_NOT_USE").is_some();
         for spec in &file.textures {
-            let start = Instant::now();
-            if analyzer && cache.read(spec).ok().flatten().is_none() {
-                code += &codegen::placeholder(spec, "pub ", &self.krate);
-                continue;
-            }
-            let entry = cache.get(spec, &mut |_, _| {}).map_err(BakeError)?;
-            let seconds = start.elapsed().as_secs_f64();
-            if entry.source == Source::Generated && seconds > SLOW_SECONDS {
-                cargo(format!(
-                    "warning=noisebake: baked `{}` ({} {:?}) in {seconds:.1} s; later builds read it from {}",
-                    spec.name,
-                    spec.kind.name(),
-                    spec.dims,
-                    cache.dir.display()
-                ));
-            }
+            let entry = if analyzer {
+                match cache.lookup(spec) {
+                    Some(e) => e,
+                    None => {
+                        code += &codegen::placeholder(spec, "pub ", &self.krate);
+                        continue;
+                    }
+                }
+            } else {
+                let start = Instant::now();
+                let e = cache.get(spec, &mut |_, _| {})?;
+                if e.source == Source::Generated && start.elapsed().as_secs_f64() > SLOW_SECONDS {
+                    let what = format!("{} {:?}", spec.kind.name(), spec.dims);
+                    let dir = e
+                        .path
+                        .as_deref()
+                        .and_then(Path::parent)
+                        .unwrap_or(&cache.dir);
+                    cargo(format!(
+                        "warning={}",
+                        announce(&spec.name, &what, e.seconds, dir)
+                    ));
+                }
+                e
+            };
             let bin = data_dir.join(format!("{}.bin", spec.name));
             write_if_changed(&bin, &entry.texture.data)?;
             code += &codegen::item(spec, "pub ", &bin.display().to_string(), 0, &self.krate);
@@ -180,7 +181,7 @@ impl Bake {
                 name: spec.name.clone(),
                 bytes: entry.texture.data.len(),
                 source: entry.source,
-                seconds,
+                seconds: entry.seconds,
             });
         }
         let generated = out_dir.join(GENERATED);
@@ -199,10 +200,13 @@ impl Bake {
 
 /// Writes only when the contents differ, so unchanged files keep their timestamps and a no-op
 /// rebuild recompiles nothing.
-fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), BakeError> {
+fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     if std::fs::read(path).is_ok_and(|old| old == bytes) {
         return Ok(());
     }
-    crate::export::write_atomic(path, bytes)
-        .map_err(|e| BakeError(format!("{}: {e}", path.display())))
+    crate::atomic::write(path, bytes).map_err(|source| Error::Io {
+        action: "writing",
+        path: path.to_path_buf(),
+        source,
+    })
 }

@@ -10,10 +10,12 @@
 //! live in the `noisebake-cli` crate, so a game's build compiles none of them; see
 //! `ARCHITECTURE.md` for the crates and what may depend on what.
 
+pub mod atomic;
 pub mod bake;
 pub mod baselines;
 pub mod cache;
 pub mod codegen;
+pub mod error;
 pub mod export;
 pub mod fast;
 pub mod generate;
@@ -23,6 +25,7 @@ pub mod texture;
 pub mod vac;
 
 pub use bake::{Bake, BakeError, bake};
+pub use error::{Error, Warning};
 pub use generate::{ALGORITHM_VERSION, generate};
 pub use spec::{SpecError, TextureSpec};
 pub use texture::Texture;

@@ -2,8 +2,9 @@
 //! `bake()` end to end.
 
 mod common;
-use build_assets::cache::{Cache, Source};
+use build_assets::cache::{Cache, Corrupt, Locator, Source, decode, encode};
 use build_assets::{Bake, generate};
+use build_assets::{Error, Warning};
 use common::spec;
 use std::path::PathBuf;
 
@@ -47,7 +48,7 @@ fn truncated_flipped_and_foreign_entries_are_detected_and_regenerated() {
     let dir = tmp("corrupt");
     let s = spec(STBN);
     let good = Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
-    let path = good.path.clone();
+    let path = good.path.clone().unwrap();
     let bytes = std::fs::read(&path).unwrap();
     let mut flipped = bytes.clone();
     flipped[100] ^= 0x10;
@@ -62,7 +63,9 @@ fn truncated_flipped_and_foreign_entries_are_detected_and_regenerated() {
         assert_eq!(e.source, Source::Generated, "{what}");
         assert_eq!(e.texture.data, good.texture.data, "{what}");
         assert!(
-            c.warnings.iter().any(|w| w.contains("corrupt cache entry")),
+            c.warnings
+                .iter()
+                .any(|w| matches!(w, Warning::CorruptEntry { .. })),
             "{what}: {:?}",
             c.warnings
         );
@@ -81,6 +84,8 @@ fn offline_mode_errors_on_a_miss_and_serves_hits() {
     let mut c = Cache::new(&dir);
     c.offline = true;
     let e = c.get(&s, &mut |_, _| {}).unwrap_err();
+    assert!(matches!(e, Error::Offline { .. }), "{e}");
+    let e = e.to_string();
     assert!(
         e.contains("NOISEBAKE_OFFLINE") && e.contains("not in the cache"),
         "{e}"
@@ -178,12 +183,225 @@ fn an_unwritable_cache_falls_back_to_out_dir_with_a_warning() {
         .cargo_output(false)
         .run()
         .unwrap();
-    assert_eq!(r.cache_dir, dir.join("out/noisebake-cache"));
+    let fallback = dir.join("out/noisebake-cache");
     assert!(
-        r.warnings.iter().any(|w| w.contains("not writable")),
+        r.warnings
+            .iter()
+            .any(|w| matches!(w, Warning::Fallback { to, .. } if *to == fallback)),
         "{:?}",
         r.warnings
     );
+    assert_eq!(
+        std::fs::read_dir(&fallback).unwrap().count(),
+        2,
+        "entry and lock"
+    );
+}
+
+/// A read-only cache whose entries are all present serves them: nothing is generated or
+/// written. (Root ignores permission bits, so the read-only state is a cache path that cannot
+/// be created under, with the entries reached through the fallback's read.)
+#[test]
+fn hits_are_served_before_any_write_is_tried() {
+    let dir = tmp("readonly_hits");
+    let s = spec(STBN);
+    let filled = dir.join("filled");
+    Cache::new(&filled).get(&s, &mut |_, _| {}).unwrap();
+    let stamp = std::fs::metadata(Cache::path_in(&filled, &s))
+        .unwrap()
+        .modified()
+        .unwrap();
+    let mut c = Cache::new(&filled);
+    // Remove the lock file and make its place a directory: a write would fail here.
+    let lock = filled.join(format!("{}.lock", build_assets::cache::key(&s)));
+    std::fs::remove_file(&lock).unwrap();
+    std::fs::create_dir(&lock).unwrap();
+    let e = c.get(&s, &mut |_, _| panic!("generated on a hit")).unwrap();
+    assert_eq!(e.source, Source::Hit);
+    assert!(c.warnings.is_empty(), "{:?}", c.warnings);
+    let after = std::fs::metadata(Cache::path_in(&filled, &s))
+        .unwrap()
+        .modified()
+        .unwrap();
+    assert_eq!(stamp, after);
+}
+
+/// A directory where the entry or its lock should be, in the cache and in the fallback: the
+/// texture is still returned (uncached) with a warning, and no temporary file is left.
+#[test]
+fn blocked_entry_paths_cost_the_cache_not_the_build() {
+    let dir = tmp("blocked");
+    let s = spec(STBN);
+    let (main, fb) = (dir.join("main"), dir.join("fallback"));
+    for d in [&main, &fb] {
+        std::fs::create_dir_all(Cache::path_in(d, &s)).unwrap();
+    }
+    let mut c = Cache::new(&main);
+    c.fallback = Some(fb.clone());
+    let e = c.get(&s, &mut |_, _| {}).unwrap();
+    assert_eq!(e.source, Source::Generated);
+    assert!(e.path.is_none());
+    assert_eq!(e.texture.data, generate(&s, &mut |_, _| {}).data);
+    assert!(
+        c.warnings
+            .iter()
+            .any(|w| matches!(w, Warning::NotCached { .. })),
+        "{:?}",
+        c.warnings
+    );
+    for d in [&main, &fb] {
+        let tmps = std::fs::read_dir(d)
+            .unwrap()
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .ends_with(".tmp")
+            })
+            .count();
+        assert_eq!(tmps, 0, "{}", d.display());
+    }
+    // With only the main entry blocked, the fallback takes it and says so.
+    std::fs::remove_dir(Cache::path_in(&fb, &s)).unwrap();
+    let mut c = Cache::new(&main);
+    c.fallback = Some(fb.clone());
+    let e = c.get(&s, &mut |_, _| {}).unwrap();
+    assert_eq!(e.path, Some(Cache::path_in(&fb, &s)));
+    assert!(
+        c.warnings
+            .iter()
+            .any(|w| matches!(w, Warning::Fallback { .. }))
+    );
+}
+
+/// Crafted headers: every field is checked before it is trusted, with no panic.
+#[test]
+fn crafted_headers_are_corrupt_not_panics() {
+    let s = spec(STBN);
+    let t = generate(&s, &mut |_, _| {});
+    let good = encode(&t, &s);
+    assert!(decode(&good, &s).is_ok());
+    let set = |at: usize, v: u64| {
+        let mut b = good.clone();
+        b[at..at + 8].copy_from_slice(&v.to_le_bytes());
+        b
+    };
+    let cases: Vec<(&str, Vec<u8>, fn(&Corrupt) -> bool)> = vec![
+        ("data length near 2^64", set(8, u64::MAX - 10), |c| {
+            matches!(c, Corrupt::Length { .. })
+        }),
+        ("spec length near 2^64", set(24, u64::MAX), |c| {
+            matches!(c, Corrupt::Length { .. })
+        }),
+        (
+            "lengths that wrap to the file size",
+            {
+                let b = set(8, u64::MAX);
+                let extra = good.len() as u64 - 64 + 1;
+                let mut b2 = b.clone();
+                b2[24..32].copy_from_slice(&extra.to_le_bytes());
+                b2
+            },
+            |c| matches!(c, Corrupt::Length { .. }),
+        ),
+        ("spec hash", set(32, 1), |c| matches!(c, Corrupt::Hash)),
+        (
+            "padding",
+            {
+                let mut b = good.clone();
+                b[50] = 1;
+                b
+            },
+            |c| matches!(c, Corrupt::Padding),
+        ),
+        (
+            "version",
+            {
+                let mut b = good.clone();
+                b[6] = 9;
+                b
+            },
+            |c| matches!(c, Corrupt::Version(_)),
+        ),
+        ("empty", Vec::new(), |c| matches!(c, Corrupt::NotAnEntry)),
+    ];
+    for (what, bytes, ok) in cases {
+        let e = decode(&bytes, &s).unwrap_err();
+        assert!(ok(&e), "{what}: {e:?}");
+    }
+}
+
+/// A writer killed mid-write leaves a temporary file; the next writer of that entry removes it.
+#[test]
+fn orphaned_temporaries_are_removed_by_the_next_writer() {
+    let dir = tmp("orphans");
+    let s = spec(STBN);
+    let name = format!("{}.nbk", build_assets::cache::key(&s));
+    let orphan = dir.join(format!(".{name}.deadbeef.tmp"));
+    std::fs::write(&orphan, b"half").unwrap();
+    Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
+    assert!(!orphan.exists());
+}
+
+/// Generated entries carry a fixed old modification time, so a crate that embeds one right
+/// after generating it is not stale to Cargo (no second compile).
+#[test]
+fn generated_entries_are_dated_in_the_past() {
+    let dir = tmp("mtime");
+    let s = spec(STBN);
+    let e = Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
+    let m = std::fs::metadata(e.path.unwrap())
+        .unwrap()
+        .modified()
+        .unwrap();
+    assert!(m < std::time::SystemTime::now() - std::time::Duration::from_secs(86_400 * 365));
+}
+
+/// `cache_dir` in a spec file: relative and inside the workspace; the macro reads the crate's
+/// `noise.toml` to find it.
+#[test]
+fn spec_cache_dirs_stay_in_the_workspace_and_the_macro_finds_them() {
+    let ws = tmp("ws");
+    std::fs::write(ws.join("Cargo.lock"), "").unwrap();
+    let krate = ws.join("game");
+    std::fs::create_dir_all(&krate).unwrap();
+    let file = krate.join("noise.toml");
+    let loc = |v: &str| Locator {
+        spec_cache_dir: Some((file.clone(), v.to_string())),
+        manifest_dir: Some(krate.clone()),
+        ..Locator::default()
+    };
+    if std::env::var_os("NOISEBAKE_CACHE_DIR").is_some() {
+        eprintln!("NOISEBAKE_CACHE_DIR is set: it overrides every spec file; not checkable here");
+        return;
+    }
+    let canon = |p: PathBuf| std::fs::canonicalize(&ws).unwrap().join(p);
+    assert_eq!(
+        loc("cache").resolve().unwrap().dir,
+        canon("game/cache".into())
+    );
+    assert_eq!(
+        loc("../baked").resolve().unwrap().dir,
+        canon("baked".into())
+    );
+    for (bad, why) in [
+        ("/etc/noise", "absolute"),
+        ("../../outside", "leaves the workspace"),
+        ("a/../../b", "`..` after"),
+        ("", "empty"),
+    ] {
+        let e = loc(bad).resolve().unwrap_err();
+        assert!(
+            matches!(e, Error::CacheDir { .. }) && e.to_string().contains(why),
+            "{bad}: {e}"
+        );
+    }
+    // The macro's locator reads `cache_dir` from noise.toml beside the manifest, even when its
+    // textures are invalid (the build script reports those).
+    std::fs::write(&file, "cache_dir = \"committed\"\n[[texture]]\nname = 1\n").unwrap();
+    let got = build_assets::spec::read_cache_dir(&std::fs::read_to_string(&file).unwrap());
+    assert_eq!(got.as_deref(), Some("committed"));
 }
 
 #[test]

@@ -1,21 +1,15 @@
-//! `noise_texture!`: declare a baked noise texture inline.
+//! `noise_texture!`: declare a baked noise texture inline. Re-exported by `noisebake` (feature
+//! `macros`); see [`noise_texture!`] for the grammar.
 //!
-//! ```ignore
-//! noisebake::noise_texture!(pub STBN = stbn { dims: [64, 64, 16], seed: 7, format: u16 });
-//! ```
-//!
-//! Visibility, item name, kind, then the spec keys of `../shared/DESIGN.md` as `key: value`
-//! (arrays `[…]`, nested tables `{ … }`, identifiers and strings both accepted for string values).
-//! This crate is a thin front end: it turns tokens into a `build_assets` spec table (keeping each
-//! token's span for errors), and `build_assets` validates, caches and generates exactly as for a
-//! build script, sharing the same cache directory.
+//! This crate is a thin front end: it turns tokens into a `build_assets` spec table (keeping
+//! each token's span for errors), and `build_assets` validates, caches and generates exactly as
+//! for a build script, in the same cache directory.
 
-use build_assets::cache::{Cache, HEADER, target_dir};
+use build_assets::cache::{HEADER, Locator, Source};
 use build_assets::codegen;
 use build_assets::spec::{self, Span, Spanned, Table, Value};
 use proc_macro2::{Span as PSpan, TokenStream};
 use quote::quote;
-use std::path::PathBuf;
 use syn::parse::{Parse, ParseStream};
 use syn::{Ident, Token, Visibility, braced, bracketed};
 
@@ -161,24 +155,52 @@ impl Parse for Input {
     }
 }
 
-/// The cache directory the macro shares with build scripts: `NOISEBAKE_CACHE_DIR`, else the
-/// workspace target dir's `noisebake-cache` (`CARGO_TARGET_DIR`, else `target/` beside the
-/// outermost `Cargo.lock` above the crate).
-fn cache() -> Cache {
-    let manifest = std::env::var_os("CARGO_MANIFEST_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_default();
-    let root = manifest
-        .ancestors()
-        .filter(|d| d.join("Cargo.lock").exists())
-        .last()
-        .unwrap_or(&manifest)
-        .to_path_buf();
-    let target = target_dir(None).unwrap_or_else(|| root.join("target"));
-    Cache::locate(None, None, &target).with_default_dir(target.join("noisebake-cache"))
-}
-
-/// Declares a baked noise texture: `noise_texture!(pub NAME = kind { key: value, … });`
+/// Declares a baked noise texture as a `static` typed view over bytes generated at compile time.
+///
+/// # Grammar
+///
+/// ```text
+/// noise_texture!( VISIBILITY? NAME = KIND { KEY: VALUE, … } ;? )
+///
+/// VALUE := number | -number | "string" | identifier | true | false
+///        | [ VALUE, … ]                 (arrays, e.g. dims: [64, 64, 16])
+///        | { KEY: VALUE, … }            (tables, e.g. spatial_filter: { kind: box, size: 5 })
+/// ```
+///
+/// `NAME` is the item's name (the spec's `name`), `KIND` the spec's `kind`, and the keys are the
+/// spec keys of that kind (the table on the `noisebake` crate's front page). `=` is accepted in
+/// place of `:`; a bare identifier is a string (`format: u16` is `format = "u16"`). The item
+/// is `VISIBILITY static NAME: Mask2<…> | Mask3<…> | Mask4<…>`, its texel type following
+/// `format`.
+///
+/// # Examples
+///
+/// ```ignore
+/// use noisebake::noise_texture;
+///
+/// // A 64×64 blue-noise dither mask, 8-bit.
+/// noise_texture!(pub DITHER = blue2d { dims: [64, 64], seed: 1, sigma: 1.9 });
+/// // Spatiotemporal blue noise with flat per-frame histograms.
+/// noise_texture!(STBN = stbn { dims: [64, 64, 16], seed: 7, format: u16, histogram: slice });
+/// // FAST for a 5×5 box filter and an exponential moving average.
+/// noise_texture!(pub(crate) FAST = fast {
+///     dims: [32, 32, 16],
+///     spatial_filter: { kind: box, size: 5 },
+///     temporal_filter: { kind: ema, alpha: 0.1, beta: 0.1 },
+/// });
+///
+/// let v: u8 = DITHER.get(x, y);
+/// let k3 = STBN.get_k_unit(x, y, frame, 3);
+/// ```
+///
+/// # Errors and messages
+///
+/// An invalid spec is a compile error at the offending token (the key, or its value), and the
+/// item is still declared with zeroed bytes so uses of it add no errors of their own. The macro
+/// shares the cache with build scripts (see the `noisebake` front page, "The cache and offline
+/// builds"); when it generates a texture it says so on stderr, with the time taken, and a
+/// build that finds the texture in the cache prints nothing. Under rust-analyzer a cache miss
+/// gives a placeholder instead of a long generation.
 #[proc_macro]
 pub fn noise_texture(tokens: proc_macro::TokenStream) -> proc_macro::TokenStream {
     let input = match syn::parse::<Input>(tokens) {
@@ -236,28 +258,55 @@ fn expand(input: Input) -> TokenStream {
             return quote!(#err #ph);
         }
     };
-    let mut cache = cache();
-    let code = if std::env::var_os("RUST_ANALYZER_INTERNALS_DO_NOT_USE").is_some()
-        && cache.read(&s).ok().flatten().is_none()
-    {
-        codegen::placeholder(&s, &vis_s, "::noisebake")
+    let fail = |msg: String| {
+        let err = syn::Error::new(name.span(), format!("noisebake: {msg}")).to_compile_error();
+        let ph: TokenStream = codegen::placeholder(&s, &vis_s, "::noisebake")
+            .parse()
+            .unwrap_or_default();
+        quote!(#err #ph)
+    };
+    let mut cache = match Locator::for_macro().resolve() {
+        Ok(c) => c,
+        Err(e) => return fail(e.to_string()),
+    };
+    let analyzer = std::env::var_os("RUST_ANALYZER_INTERNALS_DO_NOT_USE").is_some();
+    let entry = if analyzer {
+        cache.lookup(&s)
     } else {
         match cache.get(&s, &mut |_, _| {}) {
-            Ok(entry) => codegen::item(
+            Ok(e) => Some(e),
+            Err(e) => return fail(e.to_string()),
+        }
+    };
+    // Proc macros have no warning channel on stable Rust; stderr reaches the user through
+    // cargo. Said once, when it happens: a later build hits the cache and prints nothing.
+    for w in &cache.warnings {
+        eprintln!("warning: noisebake: {w}");
+    }
+    let code = match entry {
+        None => codegen::placeholder(&s, &vis_s, "::noisebake"),
+        Some(entry) => {
+            let Some(path) = entry.path else {
+                return fail(format!(
+                    "texture `{}` was generated but no cache directory could store it, and the macro embeds the stored file; make the cache directory writable or set NOISEBAKE_CACHE_DIR",
+                    s.name
+                ));
+            };
+            if entry.source == Source::Generated {
+                let what = format!("{} {:?}", s.kind.name(), s.dims);
+                let dir = path.parent().unwrap_or(&cache.dir);
+                eprintln!(
+                    "warning: {}",
+                    build_assets::bake::announce(&s.name, &what, entry.seconds, dir)
+                );
+            }
+            codegen::item(
                 &s,
                 &vis_s,
-                &entry.path.display().to_string(),
+                &path.display().to_string(),
                 HEADER,
                 "::noisebake",
-            ),
-            Err(e) => {
-                let err =
-                    syn::Error::new(name.span(), format!("noisebake: {e}")).to_compile_error();
-                let ph: TokenStream = codegen::placeholder(&s, &vis_s, "::noisebake")
-                    .parse()
-                    .unwrap_or_default();
-                return quote!(#err #ph);
-            }
+            )
         }
     };
     code.parse().unwrap_or_else(|e| {

@@ -6,6 +6,7 @@
 //! noisebake analyze FILE.npy
 //! ```
 
+use build_assets::cache::{Locator, Source};
 use build_assets::export::{npy, write_atomic};
 use build_assets::spec::{self, Span, Spanned, Table, TextureSpec, Value};
 use build_assets::{Texture, generate};
@@ -29,7 +30,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Generate every texture of a spec file into `DIR/<name>.npy` (and PNG slices).
+    /// Bake every texture of a spec file through the cache (the same one build scripts and the
+    /// macro use) into `DIR/<name>.npy` (and PNG slices).
     Bake {
         /// The spec file (`[[texture]]` tables).
         spec: PathBuf,
@@ -39,6 +41,10 @@ enum Command {
         /// Also write each 2D slice as a PNG.
         #[arg(long)]
         png: bool,
+        /// The cache directory (default: NOISEBAKE_CACHE_DIR, the spec's cache_dir, else the
+        /// workspace's target/noisebake-cache).
+        #[arg(long)]
+        cache_dir: Option<PathBuf>,
     },
     /// Generate one texture from flags: the spec keys as `--key value` (values in TOML syntax;
     /// dims also as WxHxT), written as .npy, .png (slices) or .bin (raw little-endian).
@@ -104,7 +110,12 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Bake { spec, out, png } => bake(&spec, &out, png),
+        Command::Bake {
+            spec,
+            out,
+            png,
+            cache_dir,
+        } => bake(&spec, &out, png, cache_dir),
         Command::Gen { args } => gen_cmd(&args),
         Command::Analyze {
             file,
@@ -137,6 +148,11 @@ fn main() -> ExitCode {
 
 /// Generates with a progress bar on stderr that appears once a generation has run for 2 s.
 fn generate_with_progress(spec: &TextureSpec) -> Texture {
+    with_progress(spec, |cb| generate(spec, cb))
+}
+
+/// Runs `run` with a progress callback that shows a bar on stderr once it has run for 2 s.
+fn with_progress<T>(spec: &TextureSpec, run: impl FnOnce(&mut dyn FnMut(u64, u64)) -> T) -> T {
     let start = Instant::now();
     let mut bar: Option<ProgressBar> = None;
     let mut cb = |done: u64, total: u64| {
@@ -154,7 +170,7 @@ fn generate_with_progress(spec: &TextureSpec) -> Texture {
             b.set_position(done);
         }
     };
-    let t = generate(spec, &mut cb);
+    let t = run(&mut cb);
     if let Some(b) = bar {
         b.finish_and_clear();
     }
@@ -187,25 +203,47 @@ fn write_outputs(t: &Texture, out: &Path, with_png: bool) -> Result<(), String> 
     Ok(())
 }
 
-fn bake(spec_path: &Path, out: &Path, with_png: bool) -> Result<(), String> {
+fn bake(
+    spec_path: &Path,
+    out: &Path,
+    with_png: bool,
+    cache_dir: Option<PathBuf>,
+) -> Result<(), String> {
     let text =
         std::fs::read_to_string(spec_path).map_err(|e| format!("{}: {e}", spec_path.display()))?;
     let file =
         spec::parse_toml(&text).map_err(|e| e.render(&spec_path.display().to_string(), &text))?;
+    let spec_dir = spec_path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let locator = Locator {
+        explicit: cache_dir,
+        spec_cache_dir: file.cache_dir.clone().map(|d| (spec_path.to_path_buf(), d)),
+        out_dir: None,
+        manifest_dir: std::fs::canonicalize(spec_dir).ok(),
+    };
+    let mut cache = locator.resolve().map_err(|e| e.to_string())?;
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     for s in &file.textures {
-        let start = Instant::now();
-        let t = generate_with_progress(s);
-        let took = start.elapsed();
+        let entry = with_progress(s, |cb| cache.get(s, cb)).map_err(|e| e.to_string())?;
+        for w in cache.warnings.drain(..) {
+            eprintln!("warning: {w}");
+        }
+        let t = entry.texture;
         write_outputs(&t, &out.join(format!("{}.npy", s.name)), with_png)?;
+        let how = match entry.source {
+            Source::Hit => "cached".to_string(),
+            Source::Generated => format!("{:.3} s", entry.seconds),
+        };
         println!(
-            "{:<24} {:<14} {:>10} bytes  {:>9.3} s",
+            "{:<24} {:<14} {:>10} bytes  {how:>9}",
             s.name,
             format!("{}{:?}", s.kind.name(), s.dims),
             t.data.len(),
-            took.as_secs_f64()
         );
     }
+    println!("cache: {}", cache.dir.display());
     Ok(())
 }
 
@@ -408,7 +446,7 @@ fn report(
                 r.bias.map_or("-".into(), |b| format!("{b:+.1e}")),
             );
         }
-        println!("  goals (issue 7; times are this machine's, this run's):");
+        println!("  goals (times are this machine's, this run's):");
         for g in stochastic::goals(&rows) {
             println!(
                 "  {:<28} {:<24} {:>36}  {}",

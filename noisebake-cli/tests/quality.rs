@@ -1,4 +1,4 @@
-//! Quality of the masks, measured as DESIGN.md says: spatial and temporal low-frequency power,
+//! Quality of the masks, measured as ARCHITECTURE.md says: spatial and temporal low-frequency power,
 //! per-slice histograms and per-pixel convergence (STBN §4.2, Fig. 5, 6, 8).
 
 mod common;

@@ -1,4 +1,4 @@
-//! The keys of the `fast` kind (DESIGN.md): sample space, distribution, filters, combination.
+//! The keys of the `fast` kind: sample space, distribution, filters, combination.
 
 use super::{Fields, Span, Spanned, SpecError, Value, number, type_error};
 use crate::fast::{

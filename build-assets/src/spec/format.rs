@@ -1,4 +1,4 @@
-//! Storage formats of baked textures and the rank → value encoding (DESIGN.md: rank `r` of `N`
+//! Storage formats of baked textures and the rank → value encoding (ARCHITECTURE.md: rank `r` of `N`
 //! becomes `(r + 0.5) / N` in f32 and `floor(r · 2^bits / N)` in unorm formats, so every format
 //! has a flat histogram over the ranked set).
 

@@ -13,7 +13,7 @@ mod value;
 pub use error::{SpecError, closest};
 pub use fast::MAX_FAST_WORK;
 pub use format::{Format, Scalar, decode_unit, encode_ranks, encode_unit};
-pub use toml_file::{SpecFile, parse_toml, parse_value};
+pub use toml_file::{SpecFile, parse_toml, parse_value, read_cache_dir};
 pub use value::{Span, Spanned, Table, Value};
 
 use crate::fast::FastParams;

@@ -99,6 +99,16 @@ pub fn parse_value(text: &str) -> Option<Value> {
     }
 }
 
+/// The top-level `cache_dir` of a spec file's text, without validating its textures (the
+/// macro's way to find a committed cache; the build script reports the file's errors).
+pub fn read_cache_dir(text: &str) -> Option<String> {
+    let doc = DeTable::parse(text).ok()?;
+    match doc.get_ref().get("cache_dir")?.get_ref() {
+        DeValue::String(s) => Some(s.to_string()),
+        _ => None,
+    }
+}
+
 /// Parses and validates a spec file's text. Errors carry byte spans into `text`; use
 /// [`SpecError::render`] to show them with file, line and column.
 pub fn parse_toml(text: &str) -> Result<SpecFile, SpecError> {

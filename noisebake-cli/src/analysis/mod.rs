@@ -1,4 +1,4 @@
-//! Quality metrics of masks (DESIGN.md, "How quality is measured"; STBN §4.2, Fig. 5, 6 and 8).
+//! Quality metrics of masks (STBN §4.2, Fig. 5, 6 and 8): spectra, histograms, convergence.
 //!
 //! - Spatial low-frequency power of each 2D slice and temporal low-frequency power of each
 //!   pixel's sequence: the mean DFT power at non-zero frequencies up to [`LOW_FREQUENCY`] cycles

@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::Instant;
 
-/// One row of the JSON report (DESIGN.md / issue contract).
+/// One row of the JSON report (`report --json`; the field names are a documented contract).
 #[derive(Clone, Debug, Serialize)]
 pub struct Row {
     /// `perlin3`, `fbm3`, …
@@ -624,7 +624,7 @@ fn rmse_batch(
     })
 }
 
-/// One goal of the report (issue 7), checked against a run's rows.
+/// One goal of the report, checked against a run's rows.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Goal {
     /// What is measured: `perlin3 deterministic`, `gabor3 speedup`, …
@@ -639,7 +639,7 @@ pub struct Goal {
 
 /// The absolute goals: the deterministic 3D Perlin and 10-octave fBm within these times, and
 /// what the peer `noise-functions` takes for the same function on the reference machine
-/// (`../shared/README.md`: 3D Perlin ≈ 32 ns, fBm10 ≈ 309 ns on "a machine like yours"). This
+/// (a 2-core x86_64 cloud machine: 3D Perlin ≈ 32 ns, fBm10 ≈ 309 ns, single thread). This
 /// machine's speed drifts by up to 1.5× (its neighbours' load); the report prints, beside
 /// each goal's time, the time scaled to the reference by the interleaved ratio to the peer.
 /// Met or not is decided on this run's own time.
