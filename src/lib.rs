@@ -87,7 +87,11 @@
 //! every entry is present, and otherwise sends new entries to `OUT_DIR` (or the system
 //! temporary directory, for the macro) with a warning. Generations longer than a second are
 //! announced by the build script (`cargo:warning`); the macro announces every generation and
-//! every replaced entry on stderr. A build that finds everything in the cache prints nothing.
+//! every replaced entry on stderr. Cargo replays what a build step printed until that step runs
+//! again, so after announcing, the build script has the next build run it once more, quietly
+//! (every texture is then a cache hit; the crate recompiles once): from then on a no-op build
+//! prints nothing. The macro forces no second compile: Cargo shows its message again on fresh
+//! builds until the crate next compiles.
 //!
 //! # Spec keys
 //!
