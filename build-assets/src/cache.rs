@@ -198,11 +198,7 @@ fn spec_relative(file: &Path, value: &str, root: Option<&Path>) -> Result<PathBu
     let mut out = base.clone();
     for c in rel.components() {
         match c {
-            Component::ParentDir => {
-                if !out.pop() {
-                    return Err("leaves the file system root");
-                }
-            }
+            Component::ParentDir if !out.pop() => return Err("leaves the file system root"),
             Component::Normal(n) => out.push(n),
             _ => {}
         }

@@ -1,7 +1,7 @@
 //! # build-assets
 //!
 //! The part of noisebake that runs inside a game's build: a spec (from `noise.toml` or the
-//! `noise_texture!` macro) is validated ([`spec`]), generated ([`generate`]: void and cluster
+//! `noise_texture!` macro) is validated ([`spec`]), generated ([`generate()`]: void and cluster
 //! in N dimensions, FAST, baselines), stored in a content-addressed [`cache`] and turned into
 //! Rust items that embed the bytes ([`codegen`]). [`bake()`] does all of it for a build script.
 //!

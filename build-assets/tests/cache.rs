@@ -287,7 +287,8 @@ fn crafted_headers_are_corrupt_not_panics() {
         b[at..at + 8].copy_from_slice(&v.to_le_bytes());
         b
     };
-    let cases: Vec<(&str, Vec<u8>, fn(&Corrupt) -> bool)> = vec![
+    type Case = (&'static str, Vec<u8>, fn(&Corrupt) -> bool);
+    let cases: Vec<Case> = vec![
         ("data length near 2^64", set(8, u64::MAX - 10), |c| {
             matches!(c, Corrupt::Length { .. })
         }),

@@ -166,7 +166,7 @@ pub fn generate_within(
     )
 }
 
-/// Runs the paper's own schedule ([`paper`](self::paper)) from the same stratified start as
+/// Runs the paper's own schedule ([`paper`]) from the same stratified start as
 /// [`generate_within`] (a baseline for reports; baking never uses it).
 #[cfg(feature = "research")]
 pub fn paper_baseline(

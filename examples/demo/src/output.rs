@@ -2,7 +2,7 @@
 
 use crate::{AppResult, Config};
 use build_assets::export::write_atomic;
-use noisebake_cli::export::plot::{PALETTE, Series, line_plot};
+use noisebake_cli::export::plot::{Labels, PALETTE, Series, line_plot};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -47,7 +47,7 @@ pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), Stri
         )?;
         let _ = write!(
             html,
-            "<h2>{app}</h2><p>{}</p><figure><img src=\"{app}_reference.png\"><figcaption>reference</figcaption></figure>\n<table><tr><th>noise</th><th>1 frame</th><th>{mc}-frame average</th><th>{}-frame EMA</th><th>RMSE 1 / filtered 1 / {mc} / EMA {} / EMA+blur</th><th>render s</th></tr>\n",
+            "<h2>{app}</h2><p>{}</p><figure><img src=\"{app}_reference.png\" alt=\"{app}: reference image\"><figcaption>reference</figcaption></figure>\n<table><tr><th>noise</th><th>1 frame</th><th>{mc}-frame average</th><th>{}-frame EMA</th><th>RMSE 1 / filtered 1 / {mc} / EMA {} / EMA+blur</th><th>render s</th></tr>\n",
             r.caption, cfg.frames, cfg.frames
         );
         for (m, imgs) in &r.runs {
@@ -60,9 +60,10 @@ pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), Stri
                     r.channels,
                 )?;
             }
+            let ema_frames = cfg.frames;
             let _ = writeln!(
                 html,
-                "<tr><td>{n}</td><td><img src=\"{app}_{n}_1.png\"></td><td><img src=\"{app}_{n}_mc.png\"></td><td><img src=\"{app}_{n}_ema.png\"></td><td>{:.4} / {:.4} / {:.4} / {:.4} / {:.4}</td><td>{:.2}</td></tr>",
+                "<tr><td>{n}</td><td><img src=\"{app}_{n}_1.png\" alt=\"{app} with {n}: one frame\"></td><td><img src=\"{app}_{n}_mc.png\" alt=\"{app} with {n}: {mc}-frame average\"></td><td><img src=\"{app}_{n}_ema.png\" alt=\"{app} with {n}: EMA after {ema_frames} frames\"></td><td>{:.4} / {:.4} / {:.4} / {:.4} / {:.4}</td><td>{:.2}</td></tr>",
                 m.mc[0],
                 m.filtered_1,
                 m.mc[mc - 1],
@@ -88,7 +89,19 @@ pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), Stri
                 })
                 .collect();
             let file = format!("{app}_{kind}_convergence.png");
-            let range = line_plot(&dir.join(&file), &series, true)?;
+            let labels = Labels {
+                title: format!(
+                    "{app}: {}",
+                    if pick == 0 {
+                        "Monte Carlo average over frames"
+                    } else {
+                        "exponential moving average"
+                    }
+                ),
+                x: "frames".into(),
+                y: "RMSE (log scale)".into(),
+            };
+            let range = line_plot(&dir.join(&file), &series, &labels, true)?;
             let legend: Vec<String> = series
                 .iter()
                 .map(|s| {
@@ -100,7 +113,7 @@ pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), Stri
                 .collect();
             let _ = writeln!(
                 html,
-                "<figure><img style=\"width:480px\" src=\"{file}\"><figcaption>{} RMSE vs frames {:.0}–{:.0}; log10 RMSE {:.2} … {:.2}<br>{}</figcaption></figure>",
+                "<figure><img style=\"width:480px\" src=\"{file}\" alt=\"{app}: RMSE against frames, one line per noise\"><figcaption>{} RMSE vs frames {:.0}–{:.0}; log10 RMSE {:.2} … {:.2}<br>{}</figcaption></figure>",
                 if pick == 0 {
                     "Monte Carlo average:"
                 } else {
@@ -166,7 +179,7 @@ pub fn extra_panels(
     for f in ["cnj_f1", "cnj_f2_minus_f1", "cnj_foam", "cnj_cells"] {
         let _ = write!(
             html,
-            "<figure><img src=\"{f}.png\" style=\"width:256px\"><figcaption>{f}</figcaption></figure>"
+            "<figure><img src=\"{f}.png\" style=\"width:256px\" alt=\"{f}\"><figcaption>{f}</figcaption></figure>"
         );
     }
     html += "<br>";
@@ -174,7 +187,8 @@ pub fn extra_panels(
         if let Some((nu, a, q)) = r.quality {
             let _ = write!(
                 html,
-                "<figure><img src=\"{}.png\" style=\"width:256px\"><figcaption>{}: ν_eff {nu:.3}, ā {a:.1}, q {q:.5}, {:.2} ms</figcaption></figure>",
+                "<figure><img src=\"{}.png\" style=\"width:256px\" alt=\"{} point set\"><figcaption>{}: ν_eff {nu:.3}, ā {a:.1}, q {q:.5}, {:.2} ms</figcaption></figure>",
+                r.what,
                 r.what,
                 r.what,
                 r.seconds * 1e3
@@ -183,11 +197,11 @@ pub fn extra_panels(
             let _ = write!(html, "<p>{}: {:.1} ms</p>", r.what, r.seconds * 1e3);
         }
     }
-    html += "<h2>stochastic noise</h2><p>A procedural fBm cloud (single scattering, ratio tracking) with the density evaluated deterministically or by the one-sample fBm estimator (Fajardo &amp; Pharr); both unbiased, RMSE against 1024 spp.</p>\n<figure><img src=\"cloud_reference.png\" style=\"width:256px\"><figcaption>reference</figcaption></figure>";
+    html += "<h2>stochastic noise</h2><p>A procedural fBm cloud (single scattering, ratio tracking) with the density evaluated deterministically or by the one-sample fBm estimator (Fajardo &amp; Pharr); both unbiased, RMSE against 1024 spp.</p>\n<figure><img src=\"cloud_reference.png\" style=\"width:256px\" alt=\"fBm cloud, 1024-spp reference\"><figcaption>reference</figcaption></figure>";
     for (name, secs, e) in cloud {
         let _ = write!(
             html,
-            "<figure><img src=\"cloud_{name}.png\" style=\"width:256px\"><figcaption>{name}: {secs:.2} s, RMSE {e:.4}</figcaption></figure>"
+            "<figure><img src=\"cloud_{name}.png\" style=\"width:256px\" alt=\"fBm cloud rendered with {name}\"><figcaption>{name}: {secs:.2} s, RMSE {e:.4}</figcaption></figure>"
         );
     }
     write_atomic(&path, html.as_bytes()).map_err(|e| format!("index.html: {e}"))

@@ -1,13 +1,17 @@
-//! Line plots as PNG (loss against time, RMSE against frames): axes with tick marks and one
-//! coloured polyline per series. Labels live next to the image (report text, HTML captions).
+//! Line plots as PNG (loss against time, RMSE against frames), drawn with `plotters` into an
+//! RGB buffer: a title, numbered axes with labels, a light grid, a legend, and lines told apart
+//! by colour and by marker shape. The font (DejaVu Sans, licence beside it in `assets/`) is
+//! embedded, so plots need no system fonts.
 
-use image::{Rgb, RgbImage};
+use plotters::coord::Shift;
+use plotters::prelude::*;
 use std::path::Path;
+use std::sync::Once;
 
 /// One curve.
 #[derive(Clone, Debug)]
 pub struct Series {
-    /// Name (for the caption).
+    /// Name (the legend entry).
     pub label: String,
     /// Line colour.
     pub color: [u8; 3],
@@ -15,7 +19,18 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
 }
 
-/// Distinct colours for up to eight series.
+/// What the axes mean.
+#[derive(Clone, Debug, Default)]
+pub struct Labels {
+    /// Above the plot.
+    pub title: String,
+    /// Under the x axis.
+    pub x: String,
+    /// Beside the y axis.
+    pub y: String,
+}
+
+/// Distinct colours for up to eight series (the "tab10" palette).
 pub const PALETTE: [[u8; 3]; 8] = [
     [214, 39, 40],
     [31, 119, 180],
@@ -27,48 +42,30 @@ pub const PALETTE: [[u8; 3]; 8] = [
     [23, 190, 207],
 ];
 
-const W: u32 = 640;
-const H: u32 = 400;
-const M: i64 = 40;
+/// Width and height of every plot, in pixels.
+pub const SIZE: (u32, u32) = (800, 500);
 
-fn line(img: &mut RgbImage, a: (i64, i64), b: (i64, i64), c: [u8; 3]) {
-    let (dx, dy) = ((b.0 - a.0).abs(), -(b.1 - a.1).abs());
-    let (sx, sy) = (
-        if a.0 < b.0 { 1 } else { -1 },
-        if a.1 < b.1 { 1 } else { -1 },
-    );
-    let (mut x, mut y, mut err) = (a.0, a.1, dx + dy);
-    loop {
-        for (ox, oy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-            let (px, py) = (x + ox, y + oy);
-            if (0..W as i64).contains(&px) && (0..H as i64).contains(&py) {
-                img.put_pixel(px as u32, py as u32, Rgb(c));
-            }
-        }
-        if (x, y) == b {
-            break;
-        }
-        let e2 = 2 * err;
-        if e2 >= dy {
-            err += dy;
-            x += sx;
-        }
-        if e2 <= dx {
-            err += dx;
-            y += sy;
-        }
-    }
+const FONT: &str = "sans-serif";
+
+fn register_font() -> Result<(), String> {
+    static ONCE: Once = Once::new();
+    let mut result = Ok(());
+    ONCE.call_once(|| {
+        result = plotters::style::register_font(
+            FONT,
+            FontStyle::Normal,
+            include_bytes!("../../assets/DejaVuSans.ttf"),
+        )
+        .map_err(|_| "the embedded plot font does not parse".to_string());
+    });
+    result
 }
 
-/// Plots `series` into a 640×400 PNG at `path`; `log_y` plots log10 of y. Returns the axis
-/// ranges `(x_min, x_max, y_min, y_max)` (in plotted units) for the caption.
-pub fn line_plot(path: &Path, series: &[Series], log_y: bool) -> Result<[f64; 4], String> {
-    let ty = |y: f64| if log_y { y.max(1e-12).log10() } else { y };
-    let pts = series.iter().flat_map(|s| s.points.iter());
+/// The range of the finite points, widened when flat; `None` when there is none.
+fn range(series: &[Series], log_y: bool) -> Option<[f64; 4]> {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for &(x, y) in pts {
-        let y = ty(y);
-        if x.is_finite() && y.is_finite() {
+    for &(x, y) in series.iter().flat_map(|s| s.points.iter()) {
+        if x.is_finite() && y.is_finite() && (!log_y || y > 0.0) {
             x0 = x0.min(x);
             x1 = x1.max(x);
             y0 = y0.min(y);
@@ -76,49 +73,197 @@ pub fn line_plot(path: &Path, series: &[Series], log_y: bool) -> Result<[f64; 4]
         }
     }
     if x0 > x1 {
-        return Err("nothing to plot".into());
+        return None;
     }
     if x1 == x0 {
         x1 = x0 + 1.0;
     }
     if y1 == y0 {
-        y1 = y0 + 1.0;
+        y1 = if log_y { y0 * 10.0 } else { y0 + 1.0 };
     }
-    let mut img = RgbImage::from_pixel(W, H, Rgb([255, 255, 255]));
-    let (pw, ph) = ((W as i64 - 2 * M) as f64, (H as i64 - 2 * M) as f64);
-    let map = |x: f64, y: f64| {
-        (
-            M + ((x - x0) / (x1 - x0) * pw).round() as i64,
-            H as i64 - M - ((ty(y) - y0) / (y1 - y0) * ph).round() as i64,
-        )
-    };
-    let grey = [160, 160, 160];
-    let (l, r, b, t) = (M, W as i64 - M, H as i64 - M, M);
-    line(&mut img, (l, b), (r, b), [0, 0, 0]);
-    line(&mut img, (l, b), (l, t), [0, 0, 0]);
-    for k in 1..=4 {
-        let gx = l + (r - l) * k / 4;
-        let gy = b - (b - t) * k / 4;
-        line(&mut img, (gx, b), (gx, b + 5), [0, 0, 0]);
-        line(&mut img, (l - 5, gy), (l, gy), [0, 0, 0]);
-        for x in (l..r).step_by(6) {
-            img.put_pixel(x as u32, gy as u32, Rgb(grey));
+    Some([x0, x1, y0, y1])
+}
+
+/// Plots `series` into an 800×500 PNG at `path`, y on a log scale when `log_y`. Returns the
+/// data ranges `[x_min, x_max, y_min, y_max]` for captions.
+pub fn line_plot(
+    path: &Path,
+    series: &[Series],
+    labels: &Labels,
+    log_y: bool,
+) -> Result<[f64; 4], String> {
+    register_font()?;
+    let r = range(series, log_y).ok_or("nothing to plot")?;
+    let mut buf = vec![255u8; (SIZE.0 * SIZE.1 * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, SIZE).into_drawing_area();
+        draw(&root, series, labels, log_y, r).map_err(|e| format!("plot: {e}"))?;
+        root.present().map_err(|e| format!("plot: {e}"))?;
+    }
+    let img = image::RgbImage::from_raw(SIZE.0, SIZE.1, buf).ok_or("plot buffer size")?;
+    let mut bytes = Vec::new();
+    img.write_to(
+        &mut std::io::Cursor::new(&mut bytes),
+        image::ImageFormat::Png,
+    )
+    .map_err(|e| e.to_string())?;
+    build_assets::export::write_atomic(path, &bytes)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(r)
+}
+
+/// A tick label with at most three significant digits (`0.3`, `12.5`, `4.2e-5`).
+fn number(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let a = v.abs();
+    if !(1e-3..1e5).contains(&a) {
+        return format!("{v:.1e}");
+    }
+    let digits = (2 - a.log10().floor() as i32).max(0) as usize;
+    let s = format!("{v:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
+
+fn draw(
+    root: &Area<'_>,
+    series: &[Series],
+    labels: &Labels,
+    log_y: bool,
+    [x0, x1, y0, y1]: [f64; 4],
+) -> Result<(), Box<dyn std::error::Error>> {
+    root.fill(&WHITE)?;
+    let mut builder = ChartBuilder::on(root);
+    builder
+        .caption(&labels.title, (FONT, 20))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70);
+    let style = |s: &Series| RGBColor(s.color[0], s.color[1], s.color[2]);
+    // Markers: every series gets its colour and one of three shapes, so lines stay apart in
+    // grey print and for readers who do not tell the colours apart.
+    macro_rules! body {
+        ($chart:expr) => {{
+            let mut chart = $chart;
+            chart
+                .configure_mesh()
+                .x_desc(&labels.x)
+                .y_desc(&labels.y)
+                .label_style((FONT, 14))
+                .axis_desc_style((FONT, 16))
+                .light_line_style(RGBColor(235, 235, 235))
+                .max_light_lines(2)
+                .x_label_formatter(&|v| number(*v))
+                .y_label_formatter(&|v| number(*v))
+                .draw()?;
+            for (i, s) in series.iter().enumerate() {
+                let c = style(s);
+                let pts: Vec<(f64, f64)> = s
+                    .points
+                    .iter()
+                    .copied()
+                    .filter(|&(x, y)| x.is_finite() && y.is_finite() && (!log_y || y > 0.0))
+                    .collect();
+                let every = (pts.len() / 12).max(1);
+                let marks: Vec<(f64, f64)> = pts.iter().copied().step_by(every).collect();
+                chart
+                    .draw_series(LineSeries::new(pts, c.stroke_width(2)))?
+                    .label(&s.label)
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                    });
+                match i % 3 {
+                    0 => {
+                        chart.draw_series(marks.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+                    }
+                    1 => {
+                        chart.draw_series(
+                            marks.iter().map(|&p| TriangleMarker::new(p, 4, c.filled())),
+                        )?;
+                    }
+                    _ => {
+                        chart.draw_series(
+                            marks.iter().map(|&p| Cross::new(p, 4, c.stroke_width(2))),
+                        )?;
+                    }
+                }
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .label_font((FONT, 14))
+                .position(SeriesLabelPosition::UpperRight)
+                .draw()?;
+        }};
+    }
+    if log_y {
+        body!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?);
+    } else {
+        let pad = (y1 - y0) * 0.05;
+        body!(builder.build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))?);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tick_numbers_are_short() {
+        assert_eq!(number(0.30000000001), "0.3");
+        assert_eq!(number(12.5), "12.5");
+        assert_eq!(number(45.0), "45");
+        assert_eq!(number(0.00004), "4.0e-5");
+        assert_eq!(number(-0.125), "-0.125");
+    }
+
+    #[test]
+    fn a_plot_is_a_png_of_the_stated_size_with_text_and_every_colour() {
+        let dir = std::env::temp_dir().join(format!("noisebake-plot-{}", std::process::id()));
+        let path = dir.join("p.png");
+        let series: Vec<Series> = (0..3)
+            .map(|i| Series {
+                label: format!("series {i}"),
+                color: PALETTE[i],
+                points: (1..50).map(|x| (x as f64, 1.0 / (x + i) as f64)).collect(),
+            })
+            .collect();
+        let labels = Labels {
+            title: "RMSE against frames".into(),
+            x: "frames".into(),
+            y: "RMSE".into(),
+        };
+        let r = line_plot(&path, &series, &labels, true).unwrap();
+        assert_eq!(r[0], 1.0);
+        assert_eq!(r[1], 49.0);
+        let img = image::open(&path).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), SIZE);
+        for s in &series {
+            assert!(
+                img.pixels().any(|p| p.0 == s.color),
+                "no pixel of {:?}",
+                s.color
+            );
+        }
+        // Text (numbers, labels, the title) is drawn in black and grey antialiased glyphs:
+        // many dark pixels outside the two axis lines.
+        let dark = img
+            .pixels()
+            .filter(|p| p.0.iter().all(|&c| c < 100))
+            .count();
+        assert!(dark > 2000, "{dark} dark pixels: no text?");
+        assert!(line_plot(&path, &[], &labels, false).is_err());
+        if std::env::var_os("NOISEBAKE_KEEP_PLOT").is_none() {
+            let _ = std::fs::remove_dir_all(dir);
         }
     }
-    for s in series {
-        for w in s.points.windows(2) {
-            line(&mut img, map(w[0].0, w[0].1), map(w[1].0, w[1].1), s.color);
-        }
-    }
-    build_assets::export::write_atomic(path, &{
-        let mut bytes = Vec::new();
-        img.write_to(
-            &mut std::io::Cursor::new(&mut bytes),
-            image::ImageFormat::Png,
-        )
-        .map_err(|e| e.to_string())?;
-        bytes
-    })
-    .map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok([x0, x1, y0, y1])
 }

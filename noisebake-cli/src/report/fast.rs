@@ -2,7 +2,7 @@
 //! error after the filter each mask was optimised for, against the baselines (FAST §6).
 
 use crate::analysis::filtered::{Denoiser, filtered_rmse};
-use crate::export::plot::{PALETTE, Series, line_plot};
+use crate::export::plot::{Labels, PALETTE, Series, line_plot};
 use build_assets::fast::{self, Combine, FastParams, Filter, Outcome, SampleSpace, TemporalFilter};
 use build_assets::spec::{Format, Histogram, Kind, TextureSpec};
 use serde::Serialize;
@@ -404,7 +404,12 @@ pub fn run(
             })
             .collect();
         let path = out.join(format!("fast_loss_{ci}.png"));
-        let range = line_plot(&path, &series, false)?;
+        let labels = Labels {
+            title: format!("FAST loss: {case}"),
+            x: "seconds".into(),
+            y: "loss / initial loss".into(),
+        };
+        let range = line_plot(&path, &series, &labels, false)?;
         log(&format!(
             "  plot {}: {case}; x = seconds [{:.2}, {:.2}], y = loss / initial [{:.4}, {:.4}]; {}",
             path.display(),
