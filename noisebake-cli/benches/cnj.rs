@@ -4,7 +4,7 @@
 //! random and coherent order, Worley F1 on CNJ points against `noise-functions`' Worley on a
 //! plain jittered grid, and a 1920×1080 CNJ Worley image through the region cache on 2 threads.
 //!
-//! `cargo bench -p build-assets --bench cnj`
+//! `cargo bench -p noisebake-cli --bench cnj`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use noise_runtime::cnj::{Cnj2, Cnj3};

@@ -2,7 +2,7 @@
 //! 128×128×64 u16 mask vs `u16::from_le_bytes` on the same bytes with `&` wrapping, and the
 //! low-discrepancy grids, ns per lookup. Exactness is tested in noise-runtime's tests.
 //!
-//! `cargo bench -p build-assets --bench runtime`
+//! `cargo bench -p noisebake-cli --bench runtime`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use noise_runtime::{Mask3, ldg};

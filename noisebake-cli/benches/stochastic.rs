@@ -7,7 +7,7 @@
 //! moves with the drift. The report times each deterministic/stochastic pair (and each peer
 //! against ours) in interleaved chunks of the same points, and its speedups are the steady ones.
 //!
-//! `cargo bench -p build-assets --bench stochastic`
+//! `cargo bench -p noisebake-cli --bench stochastic`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use noise_runtime::stochastic::*;

@@ -1,7 +1,7 @@
 //! Void-and-cluster generation time at the sizes the engine issue names (single thread), with
 //! the kernel's truncation and rounding bounds printed beside each: the speed and the error it was bought with.
 //!
-//! `cargo bench -p build-assets --bench vac`
+//! `cargo bench -p noisebake-cli --bench vac`
 
 use build_assets::vac::{self, Axis, DEFAULT_CUTOFF, Footprint, Group, VacConfig};
 use criterion::{Criterion, criterion_group, criterion_main};

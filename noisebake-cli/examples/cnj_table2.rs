@@ -1,7 +1,7 @@
 //! Reproduces CNJ Table 2's quality columns for the implicit methods on this implementation:
 //! 1000-point sets, averaged over 20 seeds.
 //!
-//! `cargo run --release -p build-assets --example cnj_table2`
+//! `cargo run --release -p noisebake-cli --example cnj_table2`
 
 use noisebake_cli::analysis::points::{analyze, mean};
 use noisebake_cli::points::{Method, generate};
