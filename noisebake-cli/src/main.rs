@@ -307,6 +307,8 @@ fn gen_cmd(args: &[String]) -> Result<(), String> {
         name
     };
     let s = spec::from_table(&table, Some(&name)).map_err(|e| e.to_string())?;
+    // Everything about the output is checked before minutes of generation.
+    output_kind(&out, &s)?;
     let start = Instant::now();
     let t = generate_with_progress(&s);
     eprintln!(
@@ -316,6 +318,30 @@ fn gen_cmd(args: &[String]) -> Result<(), String> {
         start.elapsed().as_secs_f64()
     );
     write_outputs(&t, &out, false)
+}
+
+/// The output format a path asks for, or why it cannot be written.
+fn output_kind(out: &Path, s: &TextureSpec) -> Result<&'static str, String> {
+    let raw = out.as_os_str().to_string_lossy();
+    if raw.ends_with('/') || raw.ends_with("/.") || raw.ends_with("/..") || out.is_dir() {
+        return Err(format!(
+            "--out {} names a directory, not a file",
+            out.display()
+        ));
+    }
+    match out.extension().and_then(|e| e.to_str()).unwrap_or("") {
+        "npy" => Ok("npy"),
+        "bin" => Ok("bin"),
+        "png" if !png::supported(s.format) => Err(format!(
+            "PNG export of {} textures is not supported; use .npy",
+            s.format
+        )),
+        "png" => Ok("png"),
+        "ktx2" => Err("KTX2 export is not available yet; write .npy, .png or .bin".into()),
+        other => Err(format!(
+            "unknown output extension `.{other}`; use .npy, .png or .bin"
+        )),
+    }
 }
 
 fn analyze(file: &Path, channels_last: bool) -> Result<(), String> {
@@ -485,6 +511,19 @@ fn points_cmd(method: &str, n: usize, seed: u64, out: &Path, analyze: bool) -> R
     })?;
     if n == 0 || n > 10_000_000 {
         return Err(format!("`--n` must be in 1..=10000000, got {n}"));
+    }
+    let max = noisebake_cli::analysis::points::MAX_POINTS;
+    if analyze && n > max {
+        return Err(format!(
+            "--analyze takes at most {max} points (the periodogram costs about 100·n² operations and 32·n·√n bytes); got {n}"
+        ));
+    }
+    let raw = out.as_os_str().to_string_lossy();
+    if raw.ends_with('/') || raw.ends_with("/.") || raw.ends_with("/..") || out.is_dir() {
+        return Err(format!(
+            "--out {} names a directory, not a file",
+            out.display()
+        ));
     }
     let start = Instant::now();
     let pts = generate(m, n, seed);

@@ -21,6 +21,11 @@ pub fn slice_names(stem: &str, dims: &[usize]) -> Vec<String> {
         .collect()
 }
 
+/// Whether [`write_slices`] can write a format: scalars of any type, u8 RGB and RGBA.
+pub fn supported(f: build_assets::spec::Format) -> bool {
+    f.channels == 1 || (f.scalar == Scalar::U8 && matches!(f.channels, 3 | 4))
+}
+
 /// Writes every slice of `t` into `dir`; returns the paths written.
 pub fn write_slices(t: &Texture, dir: &Path, stem: &str) -> Result<Vec<PathBuf>, String> {
     let w = t.dims[0] as u32;
