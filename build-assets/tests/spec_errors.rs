@@ -158,3 +158,91 @@ fn names_must_be_unique_identifiers() {
         .to_string();
     has(&e, &["invalid TOML"]);
 }
+
+/// σ so narrow that void and cluster bakes white noise is refused, with why; the bound itself
+/// is checked against the masks on both sides of it.
+#[test]
+fn sigmas_too_narrow_for_blue_noise_are_refused() {
+    for (kind, key, dims) in [
+        ("blue2d", "sigma", "[16, 16]"),
+        ("stbn", "sigma_xy", "[16, 16, 4]"),
+        ("stbn", "sigma_t", "[16, 16, 4]"),
+        ("independent2d", "sigma", "[16, 16, 2]"),
+        ("golden", "sigma", "[16, 16, 2]"),
+    ] {
+        has(
+            &error(&format!("kind = \"{kind}\"\ndims = {dims}\n{key} = 0.2")),
+            &[&format!("`{key}` = 0.2 is below 0.5"), "white noise", ":5:"],
+        );
+    }
+    has(
+        &error("kind = \"vac\"\ndims = [16, 16]\ngroups = [{ axes = [0, 1], sigma = 1e-300 }]"),
+        &["= 1e-300 is below 0.5", "groups[0]"],
+    );
+    // The bound: the narrowest accepted σ still bakes clearly blue noise, while just below it
+    // the low-frequency power is many times higher (white noise has about 1).
+    let lf = |sigma: f64| {
+        let mut v = 0.0;
+        for seed in 0..3 {
+            let r = build_assets::generate::blue2d_ranks(64, 64, sigma, 0.1, seed);
+            let vals: Vec<f64> = r.iter().map(|&r| (r as f64 + 0.5) / 4096.0).collect();
+            v += spatial_lf(&vals, 64);
+        }
+        v / 3.0
+    };
+    let (at, below) = (lf(build_assets::spec::MIN_SIGMA), lf(0.3));
+    assert!(at < 0.05 && below > 2.0 * at, "σ 0.5: {at}, σ 0.3: {below}");
+}
+
+/// Low-frequency power (|f| ≤ 1/8 cycle per texel, DC excluded) over all power, of a square
+/// mask: a direct DFT, enough for 64×64.
+fn spatial_lf(v: &[f64], n: usize) -> f64 {
+    let mean = v.iter().sum::<f64>() / v.len() as f64;
+    let (mut low, mut all) = (0.0, 0.0);
+    for ky in 0..n {
+        for kx in 0..n {
+            if kx == 0 && ky == 0 {
+                continue;
+            }
+            let (mut re, mut im) = (0.0, 0.0);
+            for y in 0..n {
+                for x in 0..n {
+                    let a = -std::f64::consts::TAU * ((kx * x + ky * y) % n) as f64 / n as f64;
+                    re += (v[y * n + x] - mean) * a.cos();
+                    im += (v[y * n + x] - mean) * a.sin();
+                }
+            }
+            let p = re * re + im * im;
+            let f = |k: usize| if 2 * k > n { n - k } else { k } as f64 / n as f64;
+            all += p;
+            if (f(kx).powi(2) + f(ky).powi(2)).sqrt() <= 0.125 {
+                low += p;
+            }
+        }
+    }
+    low / all
+}
+
+/// A key given twice, or a known top-level key of the wrong type, says so instead of
+/// suggesting itself.
+#[test]
+fn known_keys_never_suggest_themselves() {
+    let e = error("kind = \"white\"\ndims = [4, 4]\nseed = 1\nseed = 2");
+    assert!(!e.contains("did you mean"), "{e}");
+    let text = "cache_dir = 1\n[[texture]]\nname = \"T\"\nkind = \"white\"\ndims = [4]\n";
+    let e = build_assets::spec::parse_toml(text)
+        .unwrap_err()
+        .render("noise.toml", text);
+    has(&e, &["`cache_dir` must be a string", "got an integer"]);
+    assert!(!e.contains("did you mean"), "{e}");
+}
+
+#[test]
+fn names_longer_than_a_file_name_allows_are_refused() {
+    let long = "N".repeat(300);
+    let text = format!("[[texture]]\nname = \"{long}\"\nkind = \"white\"\ndims = [4]\n");
+    let e = build_assets::spec::parse_toml(&text)
+        .unwrap_err()
+        .render("noise.toml", &text);
+    has(&e, &["300 characters", "file name"]);
+}

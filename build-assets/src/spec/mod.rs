@@ -245,6 +245,10 @@ impl TextureSpec {
     }
 }
 
+/// The longest texture name: the build writes `NAME.bin` and a temporary file beside it, and
+/// file names stop at 255 bytes on common file systems.
+pub const MAX_NAME: usize = 200;
+
 /// Checks that `name` can be a Rust item name.
 pub fn check_identifier(name: &str) -> Result<(), String> {
     const KEYWORDS: &[&str] = &[
@@ -254,6 +258,12 @@ pub fn check_identifier(name: &str) -> Result<(), String> {
         "trait", "true", "type", "unsafe", "use", "where", "while", "abstract", "become", "box",
         "do", "final", "macro", "override", "priv", "try", "typeof", "unsized", "virtual", "yield",
     ];
+    if name.len() > MAX_NAME {
+        return Err(format!(
+            "the texture name is {} characters long; at most {MAX_NAME} fit a file name (the build writes `NAME.bin`)",
+            name.len()
+        ));
+    }
     let mut chars = name.chars();
     let ok_start = matches!(chars.next(), Some(c) if c == '_' || c.is_ascii_alphabetic());
     if !ok_start || !chars.all(|c| c == '_' || c.is_ascii_alphanumeric()) || name == "_" {
@@ -266,6 +276,12 @@ pub fn check_identifier(name: &str) -> Result<(), String> {
     }
     Ok(())
 }
+
+/// The narrowest void-and-cluster σ accepted, in texels (or frames). Below it the energy a
+/// texel splats on its nearest neighbour is under e^-2 of its own, void and cluster no longer
+/// sees clusters, and the mask's low-frequency power climbs toward white noise's (the spec
+/// tests measure both sides of the bound).
+pub const MIN_SIGMA: f64 = 0.5;
 
 /// Reads the keys of one texture table, remembering which were used.
 struct Fields<'a> {
@@ -296,6 +312,22 @@ impl<'a> Fields<'a> {
                 key,
                 span,
                 format!("`{key}` must be a number in (0, {max}], got {x}"),
+            ));
+        }
+        Ok(x)
+    }
+
+    /// A void-and-cluster σ: positive, at most 100, and at least [`MIN_SIGMA`].
+    fn sigma(&mut self, key: &'static str, default: f64) -> Result<f64, SpecError> {
+        let x = self.positive(key, default, 100.0)?;
+        if x < MIN_SIGMA {
+            let span = self.get(key).and_then(|v| v.span);
+            return Err(SpecError::at(
+                key,
+                span,
+                format!(
+                    "`{key}` = {x:?} is below {MIN_SIGMA}: a Gaussian this narrow gives the nearest neighbour less than e^-2 of a texel's energy, so void and cluster cannot see clusters and bakes white noise; use {MIN_SIGMA} or more (1.5 to 2 is usual)"
+                ),
             ));
         }
         Ok(x)
@@ -339,6 +371,13 @@ impl<'a> Fields<'a> {
     fn finish(self, texture: &str) -> Result<(), SpecError> {
         for (i, (k, _)) in self.table.iter().enumerate() {
             if !self.used[i] {
+                if self.allowed.contains(&k.value.as_str()) {
+                    return Err(SpecError::at(
+                        k.value.clone(),
+                        k.span,
+                        format!("texture `{texture}`: key `{}` is given twice", k.value),
+                    ));
+                }
                 let hint = closest(&k.value, &self.allowed)
                     .map(|c| format!(" (did you mean `{c}`?)"))
                     .unwrap_or_default();
@@ -449,15 +488,15 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         "blue2d" => {
             want_dims(2, 2)?;
             Kind::Blue2d {
-                sigma: f.positive("sigma", 1.5, 100.0)?,
+                sigma: f.sigma("sigma", 1.5)?,
                 initial_density: f.density()?,
             }
         }
         "stbn" => {
             want_dims(3, 3)?;
             Kind::Stbn {
-                sigma_xy: f.positive("sigma_xy", 1.9, 100.0)?,
-                sigma_t: f.positive("sigma_t", 1.9, 100.0)?,
+                sigma_xy: f.sigma("sigma_xy", 1.9)?,
+                sigma_t: f.sigma("sigma_t", 1.9)?,
                 initial_density: f.density()?,
                 histogram: f.histogram()?,
             }
@@ -525,14 +564,14 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         "independent2d" => {
             want_dims(2, 4)?;
             Kind::Independent2d {
-                sigma: f.positive("sigma", 1.9, 100.0)?,
+                sigma: f.sigma("sigma", 1.9)?,
                 initial_density: f.density()?,
             }
         }
         "golden" => {
             want_dims(3, 3)?;
             Kind::Golden {
-                sigma: f.positive("sigma", 1.9, 100.0)?,
+                sigma: f.sigma("sigma", 1.9)?,
                 initial_density: f.density()?,
             }
         }
@@ -668,7 +707,7 @@ fn parse_groups(v: &Spanned<Value>, ndims: usize) -> Result<Vec<Group>, SpecErro
             seen[i as usize] = true;
             axes.push(i as usize);
         }
-        let sigma = f.positive("sigma", 1.9, 100.0).map_err(|mut e| {
+        let sigma = f.sigma("sigma", 1.9).map_err(|mut e| {
             e.key = Some(format!("groups[{gi}].sigma"));
             e.message = format!("groups[{gi}]: {}", e.message);
             e

@@ -147,6 +147,26 @@ pub fn parse_toml(text: &str) -> Result<SpecFile, SpecError> {
                 }
             }
             ("cache_dir", Value::Str(s)) => cache_dir = Some(s.clone()),
+            ("cache_dir", other) => {
+                return Err(SpecError::at(
+                    "cache_dir",
+                    v.span,
+                    format!(
+                        "`cache_dir` must be a string (a directory relative to this file), got {}",
+                        other.type_name()
+                    ),
+                ));
+            }
+            ("texture", other) => {
+                return Err(SpecError::at(
+                    "texture",
+                    v.span,
+                    format!(
+                        "`texture` must be an array of tables ([[texture]]), got {}",
+                        other.type_name()
+                    ),
+                ));
+            }
             (key, _) => {
                 let hint = super::closest(key, &["texture", "cache_dir"])
                     .map(|c| format!(" (did you mean `{c}`?)"))
