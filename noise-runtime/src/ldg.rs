@@ -52,7 +52,8 @@ pub fn ign(x: i32, y: i32) -> f32 {
 }
 
 /// Bayer (ordered dither) matrix of size `N × N` (`N` a power of two from 2 to 65536), tiled:
-/// `(index + 0.5) / N²`.
+/// `(index + 0.5) / N²`, always in `[0, 1)`. For `N ≥ 4096` an f32 cannot tell all `N²` ranks
+/// apart, so neighbouring ranks may share a value.
 #[inline]
 pub fn bayer<const N: u32>(x: i32, y: i32) -> f32 {
     const {
@@ -68,8 +69,12 @@ pub fn bayer<const N: u32>(x: i32, y: i32) -> f32 {
         let (xb, yb) = ((x >> k) & 1, (y >> k) & 1);
         index |= (((xb ^ yb) << 1 | yb) as u64) << (2 * (levels - 1 - k));
     }
-    ((index as f64 + 0.5) / (N as f64 * N as f64)) as f32
+    // In f32 the top ranks of N ≥ 4096 (N² ≥ 2^24) would round up to 1.0: stay below it.
+    (((index as f64 + 0.5) / (N as f64 * N as f64)) as f32).min(ONE_BELOW)
 }
+
+/// The largest f32 below 1.
+const ONE_BELOW: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// Adds the golden-ratio offset of `frame` to a value in `[0, 1)`, mod 1.
 #[inline]

@@ -71,7 +71,11 @@ pub fn split(x: f32) -> (i32, f32) {
     // Branch-free floor: truncation rounds negatives up, so step down by one when it did
     // (the sign bit of x − ⌊x⌋_trunc). Integer bit tests rather than float compares: LLVM turns
     // float selects into branches on x86, which mispredict on random input.
-    let down = ((x - ft).to_bits() > 0x8000_0000) as i32; // strictly negative, not −0
+    // Strictly negative and not NaN: the bit patterns 0x8000_0001 ..= 0xff80_0000 (−0 and every
+    // NaN, whatever its sign bit, excluded). A NaN's sign is not specified by Rust, so the test
+    // must not depend on it.
+    let d = (x - ft).to_bits();
+    let down = (d.wrapping_sub(0x8000_0001) < 0x7f80_0000) as i32;
     let cell = t.saturating_sub(down);
     // The offset from the integer cell, not from `ft − down`: a float select there would become
     // a branch, mispredicted on half of all random coordinates. Exact below 2^24 (the cell is a
@@ -376,6 +380,28 @@ pub fn dfade(t: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// NaN handling does not read the NaN's sign bit (Rust leaves it unspecified, and Miri
+    /// picks it at random): every NaN splits the same way, as does every infinity of a sign.
+    #[test]
+    fn split_of_nan_ignores_its_sign() {
+        let nans = [
+            0x7fc0_0000u32,
+            0xffc0_0000,
+            0x7f80_0001,
+            0xff80_0001,
+            0x7fff_ffff,
+            0xffff_ffff,
+        ];
+        for bits in nans {
+            assert_eq!(split(f32::from_bits(bits)), (0, 0.0), "{bits:#x}");
+        }
+        assert_eq!(split(-0.0), (0, 0.0));
+        assert_eq!(split(-0.25), (-1, 0.75));
+        assert_eq!(split(f32::NEG_INFINITY).1, 0.0);
+        // Within 2^-25 below an integer the offset rounds to 1: the point is on the plane.
+        assert_eq!(split(-1e-45), (0, 0.0));
+    }
 
     #[test]
     fn cos_turns_is_within_1e6_of_cos() {

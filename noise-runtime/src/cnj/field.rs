@@ -79,8 +79,14 @@ pub const NOISE_GAIN: f64 = 1.4375;
 
 /// The 2D curl-noise velocity at `p` (lattice units) for noise scale `s`:
 /// `V = (∂N(p/s)/∂y, −∂N(p/s)/∂x)` (eq. 5), derivatives taken w.r.t. `p` (hence the `1/s`).
+///
+/// `s` below [`MIN_SCALE`] is taken as `MIN_SCALE`; a non-positive or NaN `s` gives no flow
+/// (zero velocity). So finite `p` always gives a finite velocity.
 #[inline]
 pub fn velocity2(p: [f64; 2], s: f64, seed: u32) -> [f32; 2] {
+    let Some(s) = noise_scale(s) else {
+        return [0.0; 2];
+    };
     let inv_s = 1.0 / s;
     let (_, nx, ny) = noise2([p[0] * inv_s, p[1] * inv_s], seed);
     let inv = (NOISE_GAIN / s) as f32;
@@ -89,8 +95,14 @@ pub fn velocity2(p: [f64; 2], s: f64, seed: u32) -> [f32; 2] {
 
 /// The 3D curl-noise velocity at `p`: `∇ × Φ(p/s)` with `Φ = (N₁, N₂, N₃)` three 3D gradient
 /// noises (improved Perlin noise with different seeds). Divergence-free by construction.
+///
+/// `s` is treated as in [`velocity2`]: at least [`MIN_SCALE`], and no flow for a non-positive
+/// or NaN `s`.
 #[inline]
 pub fn velocity3(p: [f64; 3], s: f64, seed: u32) -> [f32; 3] {
+    let Some(s) = noise_scale(s) else {
+        return [0.0; 3];
+    };
     let mut cell = [0i32; 3];
     let mut f = [0.0f32; 3];
     for a in 0..3 {
@@ -107,6 +119,17 @@ pub fn velocity3(p: [f64; 3], s: f64, seed: u32) -> [f32; 3] {
         (g1[2] - g3[0]) * inv,
         (g2[0] - g1[1]) * inv,
     ]
+}
+
+/// The smallest noise scale the velocity fields use (in lattice units); the lattices clamp
+/// their `s` to it too.
+pub const MIN_SCALE: f64 = 1e-3;
+
+/// `s` made safe for the fields: `None` (no flow) when non-positive or NaN, else at least
+/// [`MIN_SCALE`] (an infinite `s` gives zero velocity through `1/s`).
+#[inline]
+fn noise_scale(s: f64) -> Option<f64> {
+    (s > 0.0).then(|| s.max(MIN_SCALE))
 }
 
 /// Waves per component of the sum-of-sines potential.

@@ -9,6 +9,9 @@ use crate::stochastic::hash2;
 /// Row spacing of the triangular lattice in units of the point spacing: √3/2.
 const ROW: f64 = 0.866_025_403_784_438_6;
 
+/// The most sites a [`Region2`] caches (32 MiB of points).
+pub const MAX_REGION_SITES: usize = 1 << 22;
+
 /// Curl-noise jittering of the 2D triangular lattice.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cnj2 {
@@ -283,7 +286,9 @@ impl Cnj2 {
         Cells::from_nearest(self.k_nearest::<4>(x))
     }
 
-    /// Sites (columns × rows) a [`Region2`] over the world rectangle `[min, max]` caches.
+    /// Sites (columns × rows) a [`Region2`] over the world rectangle `[min, max]` caches: at
+    /// most [`MAX_REGION_SITES`] in all (a larger rectangle is cached from its low corner, and
+    /// queries beyond the cached block jitter their sites directly, with the same results).
     pub fn region_dims(&self, min: [f32; 2], max: [f32; 2]) -> ([i32; 2], [usize; 2]) {
         let (_, _, _, sp) = self.sane();
         let fin = |v: f32| if v.is_finite() { v as f64 / sp } else { 0.0 };
@@ -292,12 +297,15 @@ impl Cnj2 {
         let (y0, y1) = (y0.min(y1), y0.max(y1));
         // Three rings of margin beyond the nearest site of any query inside.
         let m = 5.0;
-        let i0 = floor_f64(x0 - m) as i64;
-        let j0 = floor_f64((y0 / ROW) - m) as i64;
-        let i1 = ceil_f64(x1 + m) as i64;
-        let j1 = ceil_f64((y1 / ROW) + m) as i64;
-        let w = (i1 - i0 + 1).clamp(1, 1 << 20) as usize;
-        let h = (j1 - j0 + 1).clamp(1, 1 << 20) as usize;
+        // Site indices are i32: clamp to that range (float-to-int casts saturate), then work
+        // in i64 where no difference of two i32 can overflow.
+        let idx = |v: f64| v.clamp(i32::MIN as f64, i32::MAX as f64) as i64;
+        let i0 = idx(floor_f64(x0 - m));
+        let j0 = idx(floor_f64((y0 / ROW) - m));
+        let i1 = idx(ceil_f64(x1 + m));
+        let j1 = idx(ceil_f64((y1 / ROW) + m));
+        let w = (i1 - i0 + 1).clamp(1, MAX_REGION_SITES as i64) as usize;
+        let h = (j1 - j0 + 1).clamp(1, (MAX_REGION_SITES / w) as i64) as usize;
         ([i0 as i32, j0 as i32], [w, h])
     }
 
@@ -424,7 +432,8 @@ impl<'a> Region2<'a> {
         let mut d2 = [f32::MAX; K];
         let mut at = [0usize; K];
         let w = self.dims[0] as i32;
-        let base = r * w + c;
+        // Only meaningful (and only computed without overflow) inside the cached block.
+        let base = if inside { r * w + c } else { 0 };
         let fetch = |n: usize| {
             if inside {
                 self.points[(base + deltas[n]) as usize]

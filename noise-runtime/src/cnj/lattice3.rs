@@ -28,7 +28,7 @@ pub enum Potential3 {
 /// Curl-noise jittering of a 3D lattice. Lengths are in units of the cube edge `spacing`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cnj3 {
-    /// Streamline time.
+    /// Streamline time; `|t|` is clamped so no site moves more than [`MAX_REACH`] cube edges.
     pub t: f32,
     /// Noise cell size in cube edges.
     pub s: f32,
@@ -89,8 +89,20 @@ impl Neighbor3 {
 }
 
 impl Cnj3 {
+    /// The parameters made safe (see [`super::sane`]), with `|t|` at most the time that moves
+    /// a site [`MAX_REACH`] cube edges at the potential's bound speed: a query scans every
+    /// site within `r_K + 2·max_displacement`, so this bounds its cost (about 5 000 sites).
     fn sane(&self) -> (f64, f64, u32, f64) {
-        super::sane(self.t, self.s, self.steps, self.spacing)
+        let (t, s, steps, sp) = super::sane(self.t, self.s, self.steps, self.spacing);
+        let tmax = MAX_REACH * s / self.speed();
+        (t.clamp(-tmax, tmax), s, steps, sp)
+    }
+
+    fn speed(&self) -> f64 {
+        match self.potential {
+            Potential3::Gradient => MAX_SPEED,
+            Potential3::SumOfSines => MAX_SPEED_SOS,
+        }
     }
 
     /// Position of a site in cube units.
@@ -160,11 +172,7 @@ impl Cnj3 {
     /// it) and `15 / s` for the sum of sines, times `t`.
     pub fn max_displacement(&self) -> f64 {
         let (t, s, _, _) = self.sane();
-        let speed = match self.potential {
-            Potential3::Gradient => MAX_SPEED,
-            Potential3::SumOfSines => MAX_SPEED_SOS,
-        };
-        t.abs() * speed / s
+        t.abs() * self.speed() / s
     }
 
     /// The `K ≤ 4` nearest jittered points to `x` (world units, `f64`), nearest first: every
@@ -241,6 +249,10 @@ impl Cnj3 {
         [n[0].distance, n[1].distance, n[2].distance, n[3].distance]
     }
 }
+
+/// The farthest the flow may move a site, in cube edges: `t` is clamped so that
+/// [`Cnj3::max_displacement`] stays within it (the defaults move sites about 0.8).
+pub const MAX_REACH: f64 = 4.0;
 
 /// Bound on the curl-noise speed times `s` (see [`Cnj3::max_displacement`]).
 pub const MAX_SPEED: f64 = 6.5;

@@ -42,17 +42,18 @@ mod field;
 mod lattice2;
 mod lattice3;
 
-pub use field::{SOS_WAVES, SumOfSines3, noise2, velocity2, velocity3};
-pub use lattice2::{Cells, Cnj2, Neighbor2, Region2};
-pub use lattice3::{Cnj3, Lattice3, Neighbor3, Potential3};
+pub use field::{MIN_SCALE, SOS_WAVES, SumOfSines3, noise2, velocity2, velocity3};
+pub use lattice2::{Cells, Cnj2, MAX_REGION_SITES, Neighbor2, Region2};
+pub use lattice3::{Cnj3, Lattice3, MAX_REACH, Neighbor3, Potential3};
 
 /// The parameters `(t, s, steps, spacing)` made safe: a non-finite `t` becomes 0, a
-/// non-positive or non-finite `s` or spacing becomes 1 (and `s ≥ 10⁻³`), steps in `1..=64`.
+/// non-positive or non-finite `s` or spacing becomes 1 (and `s ≥` [`MIN_SCALE`]), steps in
+/// `1..=64`.
 fn sane(t: f32, s: f32, steps: u32, spacing: f32) -> (f64, f64, u32, f64) {
     let pos = |x: f32| if x.is_finite() && x > 0.0 { x } else { 1.0 };
     (
         if t.is_finite() { t as f64 } else { 0.0 },
-        pos(s).max(1e-3) as f64,
+        (pos(s) as f64).max(field::MIN_SCALE),
         steps.clamp(1, 64),
         pos(spacing) as f64,
     )

@@ -1,0 +1,339 @@
+//! Every input class at the runtime's public functions: i32/u32 extremes, NaN, ±∞, ±0,
+//! subnormals, huge and tiny magnitudes, ξ outside [0, 1), tiny and huge parameters. The
+//! documented behaviour is checked (no panic in debug or release — overflow checks included —
+//! no hang, finite output for finite input where the docs promise it, ranges kept).
+//!
+//! Run it in debug too: `cargo test -p noise-runtime --test extremes` (CI runs the release
+//! build; both must pass).
+
+use noise_runtime::cnj::{Cnj2, Cnj3, velocity2, velocity3};
+use noise_runtime::stochastic::*;
+use noise_runtime::{Mask2, Mask3, Mask4, ldg, warp};
+
+const F: [f32; 19] = [
+    0.0,
+    -0.0,
+    1.0,
+    -1.0,
+    0.5,
+    1e-45,
+    -1e-45,
+    f32::MIN_POSITIVE,
+    1e7,
+    -1e7,
+    6.5e7,
+    -6.5e7,
+    1e20,
+    -1e30,
+    f32::MAX,
+    -f32::MAX,
+    f32::INFINITY,
+    f32::NEG_INFINITY,
+    f32::NAN,
+];
+const XI: [f32; 9] = [
+    0.0,
+    -0.0,
+    0.999_999_94,
+    1.0,
+    2.0,
+    -1.0,
+    f32::NAN,
+    f32::INFINITY,
+    f32::NEG_INFINITY,
+];
+const I: [i32; 7] = [0, 1, -1, i32::MAX, i32::MIN, i32::MAX - 1, i32::MIN + 1];
+
+fn points3() -> impl Iterator<Item = [f32; 3]> {
+    F.iter()
+        .flat_map(|&x| F.iter().map(move |&y| [x, y, 0.25]))
+        .chain(F.iter().map(|&z| [0.5, -0.25, z]))
+}
+
+fn finite3(p: [f32; 3]) -> bool {
+    p.iter().all(|v| v.is_finite())
+}
+
+#[test]
+fn lattice_noise_is_total_and_finite_on_finite_input() {
+    for p in points3() {
+        for &xi in &XI {
+            let vals = [
+                perlin3(p, 7),
+                perlin3_stochastic(p, 7, xi),
+                perlin3_grad(p, 7).0,
+                simplex3(p, 7),
+                simplex3_stochastic(p, 7, xi),
+                perlin2([p[0], p[1]], 7),
+                perlin2_stochastic([p[0], p[1]], 7, xi),
+                simplex2([p[0], p[1]], 7),
+                simplex2_stochastic([p[0], p[1]], 7, xi),
+                perlin4([p[0], p[1], p[2], 0.5], 7),
+                perlin4_stochastic([p[0], p[1], p[2], 0.5], 7, xi),
+                simplex4([p[0], p[1], p[2], 0.5], 7),
+                simplex4_stochastic([p[0], p[1], p[2], 0.5], 7, xi),
+            ];
+            if finite3(p) {
+                for (i, v) in vals.iter().enumerate() {
+                    assert!(v.is_finite(), "function {i} at {p:?}, ξ {xi}: {v}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn fractal_and_cellular_noise_are_total() {
+    let fractals = [
+        Fractal::default(),
+        Fractal::new(1, 2.0, 0.5),
+        Fractal::new(32, 2.0, 0.5),
+        Fractal::new(10, 1e30, 0.5),
+        Fractal::new(10, 2.0, 2.0),
+        Fractal::new(0, 2.0, 0.5),
+        Fractal::new(10, f32::NAN, f32::NAN),
+        Fractal::new(u32::MAX, 2.0, 0.5),
+    ];
+    for p in points3().step_by(3) {
+        for &xi in &XI[..7] {
+            for f in fractals {
+                let a = fbm3(p, f, 3);
+                let b = fbm3_stochastic(p, f, 3, xi);
+                if finite3(p) && f.lacunarity.is_finite() && f.gain.is_finite() {
+                    assert!(!a.is_nan() && !b.is_nan(), "{p:?} {f:?} ξ {xi}: {a} {b}");
+                }
+            }
+            let _ = sparse_conv3(p, 10, 1);
+            let _ = sparse_conv3_stochastic(p, 10, 1, xi);
+            let _ = sparse_conv3_stochastic1(p, 10, 1, xi);
+            let _ = sparse_conv3(p, u32::MAX, 1);
+            let _ = sparse_conv3_stochastic(p, 0, 1, xi);
+            let _ = fbm_sparse_conv3_stochastic(p, Fractal::default(), 10, 1, xi);
+            let _ = gabor3(p, Gabor::default(), 1);
+            let _ = gabor3_stochastic(p, Gabor::default(), 1, xi);
+            let w = worley3_f1(p, 1);
+            let s = smooth_voronoi3(p, 1);
+            let sv = smooth_voronoi3_stochastic(p, 1, 0.875, xi);
+            let _ = smooth_voronoi3_stochastic(p, 1, f32::NAN, xi);
+            let _ = smooth_voronoi3_stochastic(p, 1, 2.0, xi);
+            if finite3(p) {
+                assert!(w.is_finite() && s.is_finite() && sv.is_finite(), "{p:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn batch_forms_match_single_points_on_extremes() {
+    let pts: Vec<[f32; 3]> = points3().collect();
+    let xis: Vec<f32> = (0..pts.len()).map(|i| XI[i % XI.len()]).collect();
+    let mut out = vec![0.0; pts.len()];
+    perlin3_batch(&pts, 5, &mut out);
+    for (p, o) in pts.iter().zip(&out) {
+        assert_eq!(o.to_bits(), perlin3(*p, 5).to_bits(), "{p:?}");
+    }
+    perlin3_stochastic_batch(&pts, 5, &xis, &mut out);
+    for ((p, x), o) in pts.iter().zip(&xis).zip(&out) {
+        let want = perlin3_stochastic(*p, 5, *x);
+        assert!(
+            o.to_bits() == want.to_bits() || (o.is_nan() && want.is_nan()),
+            "{p:?} ξ {x}: {o} vs {want}"
+        );
+    }
+}
+
+#[test]
+fn cnj_queries_are_total_and_bounded() {
+    let lattices = [
+        Cnj2::default(),
+        Cnj2 {
+            t: 0.0,
+            ..Cnj2::default()
+        },
+        Cnj2 {
+            t: f32::MAX,
+            ..Cnj2::default()
+        },
+        Cnj2 {
+            t: f32::NAN,
+            ..Cnj2::default()
+        },
+        Cnj2 {
+            s: 1e-30,
+            ..Cnj2::default()
+        },
+        Cnj2 {
+            s: f32::INFINITY,
+            ..Cnj2::default()
+        },
+        Cnj2 {
+            spacing: 1e-30,
+            ..Cnj2::default()
+        },
+        Cnj2 {
+            spacing: -1.0,
+            ..Cnj2::default()
+        },
+        Cnj2 {
+            steps: u32::MAX,
+            ..Cnj2::default()
+        },
+    ];
+    for c in lattices {
+        for &x in &F {
+            for &y in &F[..8] {
+                let n = c.closest([x, y]);
+                if x.is_finite() && y.is_finite() {
+                    assert!(n.distance.is_finite(), "{c:?} at {x}, {y}");
+                }
+                let _ = c.cells([y, x]);
+            }
+        }
+        for &i in &I {
+            let _ = c.point([i, i.wrapping_neg()]);
+            let _ = c.point([i, i]);
+        }
+        let (_, [w, h]) = c.region_dims([-10.0, -10.0], [10.0, 10.0]);
+        let mut buf = vec![[0.0f32; 2]; w * h];
+        if let Some(r) = c.region([-10.0, -10.0], [10.0, 10.0], &mut buf) {
+            for &x in &F {
+                let _ = r.closest([x, 6.5e7]);
+                let _ = r.closest([6.5e7, x]);
+                let _ = r.cells([x, -x]);
+                let mut row = [0.0f32; 4];
+                r.f1_row(x, -x, 0.5, &mut row);
+            }
+        }
+        for (a, b) in [
+            ([f32::MAX, 0.0], [-f32::MAX, 0.0]),
+            ([f32::NAN, f32::INFINITY], [0.0, f32::NEG_INFINITY]),
+            ([-1e30, -1e30], [1e30, 1e30]),
+        ] {
+            let (_, [w, h]) = c.region_dims(a, b);
+            assert!(w >= 1 && h >= 1 && w * h <= noise_runtime::cnj::MAX_REGION_SITES);
+        }
+    }
+    let lattices3 = [
+        Cnj3::default(),
+        Cnj3 {
+            t: 30.0,
+            ..Cnj3::default()
+        },
+        Cnj3 {
+            t: f32::MAX,
+            ..Cnj3::default()
+        },
+        Cnj3 {
+            t: f32::NAN,
+            ..Cnj3::default()
+        },
+        Cnj3 {
+            s: 1e-30,
+            ..Cnj3::default()
+        },
+        Cnj3 {
+            spacing: 0.0,
+            ..Cnj3::default()
+        },
+        Cnj3 {
+            steps: u32::MAX,
+            ..Cnj3::default()
+        },
+    ];
+    for c in lattices3 {
+        for p in points3().step_by(7) {
+            let n = c.closest(p);
+            if finite3(p) {
+                assert!(n.distance.is_finite(), "{c:?} at {p:?}");
+            }
+        }
+        assert!(c.max_displacement().is_finite());
+    }
+}
+
+#[test]
+fn curl_fields_are_finite_for_finite_input() {
+    let v = [0.0, -0.0, 0.5, 0.3, -2.0, 1e-300, 1e10, -1e15, 1e300];
+    for &x in &v {
+        for &y in &v {
+            for &z in &v {
+                for s in [1.0, 2.86207, 0.0, -1.0, 1e-30, 1e30, 1e-310] {
+                    let a = velocity3([x, y, z], s, 1);
+                    assert!(
+                        a.iter().all(|c| c.is_finite()),
+                        "velocity3 {x} {y} {z} s {s}: {a:?}"
+                    );
+                    let b = velocity2([x, y], s, 1);
+                    assert!(
+                        b.iter().all(|c| c.is_finite()),
+                        "velocity2 {x} {y} s {s}: {b:?}"
+                    );
+                }
+            }
+        }
+    }
+    let _ = velocity3([f64::NAN, f64::INFINITY, 0.0], 1.0, 1);
+    let _ = velocity2([f64::NAN, f64::INFINITY], 0.0, 1);
+}
+
+#[test]
+fn grids_and_warps_keep_their_ranges() {
+    for &x in &I {
+        for &y in &I {
+            for f in [0u32, 1, u32::MAX] {
+                for v in [
+                    ldg::r2(x, y),
+                    ldg::r2_frame(x, y, f),
+                    ldg::plus(x, y),
+                    ldg::plus_frame(x, y, f),
+                    ldg::ign(x, y),
+                    ldg::ign_frame(x, y, f),
+                    ldg::bayer::<2>(x, y),
+                    ldg::bayer::<4096>(x, y),
+                    ldg::bayer::<8192>(x, y),
+                    ldg::bayer::<65536>(x, y),
+                    ldg::bayer_frame::<65536>(x, y, f),
+                ] {
+                    assert!((0.0..1.0).contains(&v), "({x}, {y}, frame {f}): {v}");
+                }
+            }
+        }
+    }
+    for &u in &XI {
+        for &v in &XI {
+            for d in [
+                warp::cosine_hemisphere(u, v),
+                warp::hemisphere_uniform(u, v),
+                warp::sphere_uniform(u, v),
+            ] {
+                assert!(d.iter().all(|c| c.is_finite()), "({u}, {v}): {d:?}");
+            }
+            let d = warp::disk_concentric(u, v);
+            assert!(d.iter().all(|c| c.is_finite()));
+        }
+    }
+}
+
+#[test]
+fn mask_reads_wrap_at_every_extreme() {
+    static B: [u8; 64] = [7; 64];
+    let m2: Mask2<u8, 8, 8> = Mask2::new(&B);
+    let m3: Mask3<u8, 4, 4, 4> = Mask3::new(&B);
+    let m4: Mask4<u8, 2, 4, 4, 2> = Mask4::new(&B);
+    for &x in &I {
+        for &y in &I {
+            assert_eq!(m2.get(x, y), 7);
+            assert_eq!(m3.get(x, y, x), 7);
+            assert_eq!(m4.get(x, y, y, x), 7);
+            for k in [0u32, 1, u32::MAX] {
+                assert_eq!(m3.get_k(x, y, i32::MAX, k), 7);
+                let u = m3.get_k_unit(x, y, i32::MIN, k);
+                assert!((0.0..1.0).contains(&u));
+            }
+            for p in [f32::NAN, -1.0, 0.0, 1.0, 2.0, f32::INFINITY] {
+                let _ = m2.threshold(x, y, p);
+                let _ = m3.threshold(x, y, i32::MAX, p);
+            }
+        }
+    }
+}
