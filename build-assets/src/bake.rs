@@ -160,7 +160,26 @@ impl Bake {
                 }
             } else {
                 let start = Instant::now();
-                let e = cache.get(spec, &mut |_, _| {})?;
+                let e = match cache.lookup(spec) {
+                    Some(e) => e,
+                    None => {
+                        let est = crate::estimate::estimate(spec);
+                        if est.seconds > crate::estimate::ANNOUNCE_SECONDS {
+                            // Shown when the script ends (Cargo holds build-script output),
+                            // and on stderr at once for `cargo build -vv`.
+                            let line = format!(
+                                "noisebake: generating `{}` ({} {:?}), estimated {est}",
+                                spec.name,
+                                spec.kind.name(),
+                                spec.dims
+                            );
+                            eprintln!("{line}");
+                            cargo(format!("warning={line}"));
+                            announced = true;
+                        }
+                        cache.get(spec, &mut |_, _| {})?
+                    }
+                };
                 if e.source == Source::Generated && start.elapsed().as_secs_f64() > SLOW_SECONDS {
                     let what = format!("{} {:?}", spec.kind.name(), spec.dims);
                     let dir = e

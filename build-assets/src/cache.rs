@@ -394,7 +394,8 @@ impl Cache {
                     break;
                 }
                 Read::Absent => {}
-                Read::Bad(w) => self.warnings.push(w),
+                Read::Bad(w) if !self.warnings.contains(&w) => self.warnings.push(w),
+                Read::Bad(_) => {}
             }
         }
         found

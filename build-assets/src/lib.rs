@@ -16,6 +16,7 @@ pub mod baselines;
 pub mod cache;
 pub mod codegen;
 pub mod error;
+pub mod estimate;
 pub mod export;
 pub mod fast;
 pub mod generate;

@@ -151,11 +151,26 @@ fn generate_with_progress(spec: &TextureSpec) -> Texture {
     with_progress(spec, |cb| generate(spec, cb))
 }
 
-/// Runs `run` with a progress callback that shows a bar on stderr once it has run for 2 s.
+/// Runs `run` with a progress callback that shows a bar on stderr once it has run for 2 s;
+/// a generation estimated to take longer than that is announced first, with its estimate.
 fn with_progress<T>(spec: &TextureSpec, run: impl FnOnce(&mut dyn FnMut(u64, u64)) -> T) -> T {
+    let est = build_assets::estimate::estimate(spec);
+    let mut said = false;
+    let mut say = |done: u64| {
+        if !said && done < u64::MAX && est.seconds > 2.0 {
+            eprintln!(
+                "generating `{}` ({} {:?}): estimated {est}",
+                spec.name,
+                spec.kind.name(),
+                spec.dims
+            );
+            said = true;
+        }
+    };
     let start = Instant::now();
     let mut bar: Option<ProgressBar> = None;
     let mut cb = |done: u64, total: u64| {
+        say(done);
         if bar.is_none() && start.elapsed() > Duration::from_secs(2) {
             let b = ProgressBar::new(total);
             b.set_style(

@@ -11,7 +11,6 @@ mod toml_file;
 mod value;
 
 pub use error::{SpecError, closest};
-pub use fast::MAX_FAST_WORK;
 pub use format::{Format, Scalar, decode_unit, encode_ranks, encode_unit};
 pub use toml_file::{SpecFile, parse_toml, parse_value, read_cache_dir};
 pub use value::{Span, Spanned, Table, Value};
@@ -725,22 +724,27 @@ fn parse_groups(v: &Spanned<Value>, ndims: usize) -> Result<Vec<Group>, SpecErro
     Ok(groups)
 }
 
-/// Rejects parameter combinations whose generation would take unreasonably long.
-fn check_work(spec: &TextureSpec, span: Option<Span>) -> Result<(), SpecError> {
-    let n = spec.texels() as u64;
+/// Texels whose energy one void-and-cluster placement updates (the truncated Gaussians of
+/// every axis group, summed); at least 1.
+pub fn splat_footprint(spec: &TextureSpec) -> u64 {
     let group_work = |axes: &[usize], sigma: f64| -> u64 {
         let r = (-2.0 * sigma * sigma * crate::vac::DEFAULT_CUTOFF.ln()).sqrt() as u64;
         axes.iter()
             .map(|&a| (2 * r + 1).min(spec.dims[a] as u64))
             .product()
     };
-    let fp = spec
-        .kind
+    spec.kind
         .groups()
         .iter()
         .map(|g| group_work(&g.axes, g.sigma))
         .sum::<u64>()
-        .max(1);
+        .max(1)
+}
+
+/// Rejects parameter combinations whose generation would take unreasonably long.
+fn check_work(spec: &TextureSpec, span: Option<Span>) -> Result<(), SpecError> {
+    let n = spec.texels() as u64;
+    let fp = splat_footprint(spec);
     if n.saturating_mul(fp) > MAX_SPLAT_WORK {
         return Err(SpecError::at(
             "dims",
