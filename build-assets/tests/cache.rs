@@ -461,3 +461,122 @@ fn nested_target_dirs_share_the_outermost_tagged_cache() {
     std::fs::write(target.join("CACHEDIR.TAG"), tag).unwrap();
     assert_eq!(build_assets::cache::target_dir(Some(&out)), expect(&target));
 }
+
+/// A full disk (a 256 KiB tmpfs, mounted when the tests run as root, as CI does): the entry
+/// goes to the fallback with a warning, no temporary file is left on the full disk, and a
+/// disk too full even for the fallback still yields the texture, uncached.
+#[test]
+fn a_full_disk_costs_the_cache_not_the_build() {
+    let dir = tmp("full");
+    let small = dir.join("small");
+    std::fs::create_dir_all(&small).unwrap();
+    let mounted = std::process::Command::new("mount")
+        .args(["-t", "tmpfs", "-o", "size=256k", "tmpfs"])
+        .arg(&small)
+        .status()
+        .is_ok_and(|s| s.success());
+    if !mounted {
+        eprintln!("SKIPPED: mounting a tmpfs needs root; the disk-full test did not run");
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI runs as root and must run this test"
+        );
+        return;
+    }
+    struct Unmount(PathBuf);
+    impl Drop for Unmount {
+        fn drop(&mut self) {
+            let _ = std::process::Command::new("umount").arg(&self.0).status();
+        }
+    }
+    let _guard = Unmount(small.clone());
+    // 128×128×16 u16 = 512 KiB: more than the disk holds.
+    let s = spec("kind = \"white\"\ndims = [128, 128, 16]\nseed = 1\nformat = \"u16\"");
+    let fallback = dir.join("fallback");
+    let mut c = Cache::new(small.join("cache"));
+    c.fallback = Some(fallback.clone());
+    let e = c.get(&s, &mut |_, _| {}).unwrap();
+    assert_eq!(e.path, Some(Cache::path_in(&fallback, &s)));
+    assert_eq!(e.texture.data, generate(&s, &mut |_, _| {}).data);
+    assert!(
+        c.warnings
+            .iter()
+            .any(|w| matches!(w, Warning::Fallback { .. })),
+        "{:?}",
+        c.warnings
+    );
+    let left: Vec<_> = std::fs::read_dir(small.join("cache"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp") || n.ends_with(".nbk"))
+        .collect();
+    assert!(left.is_empty(), "left on the full disk: {left:?}");
+    // Both full: still the texture, uncached, with a warning.
+    let mut c = Cache::new(small.join("cache"));
+    c.fallback = Some(small.join("fallback"));
+    let e = c.get(&s, &mut |_, _| {}).unwrap();
+    assert!(e.path.is_none());
+    assert_eq!(e.texture.data.len(), s.byte_len());
+    assert!(
+        c.warnings
+            .iter()
+            .any(|w| matches!(w, Warning::NotCached { .. }))
+    );
+}
+
+/// The child side of the kill test: bakes into the directory the parent names, then idles.
+#[test]
+fn kill_test_child() {
+    let Some(dir) = std::env::var_os("NOISEBAKE_KILL_TEST_DIR") else {
+        return;
+    };
+    let s = spec(KILL_SPEC);
+    Cache::new(PathBuf::from(dir))
+        .get(&s, &mut |_, _| {})
+        .unwrap();
+}
+
+const KILL_SPEC: &str = "kind = \"stbn\"\ndims = [64, 64, 64]\nseed = 3\nformat = \"f32\"";
+
+/// kill -9 at spread-out moments of a bake (generation, write, rename): afterwards the cache
+/// never serves a corrupt entry, the next bake leaves no temporary file, and no lock is stale.
+#[test]
+fn kill_9_mid_bake_leaves_nothing_wrong() {
+    let dir = tmp("kill");
+    let s = spec(KILL_SPEC);
+    let want = generate(&s, &mut |_, _| {}).data;
+    let start = std::time::Instant::now();
+    Cache::new(dir.join("timing"))
+        .get(&s, &mut |_, _| {})
+        .unwrap();
+    let full = start.elapsed();
+    for round in 0..6u32 {
+        let d = dir.join(format!("r{round}"));
+        let mut child = std::process::Command::new(std::env::current_exe().unwrap())
+            .args([
+                "--exact",
+                "kill_test_child",
+                "--nocapture",
+                "--test-threads",
+                "1",
+            ])
+            .env("NOISEBAKE_KILL_TEST_DIR", &d)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        // From early in the generation to past its end.
+        std::thread::sleep(full.mul_f64(0.3 + 0.25 * round as f64));
+        let _ = child.kill();
+        let _ = child.wait();
+        let mut c = Cache::new(&d);
+        let e = c.get(&s, &mut |_, _| {}).unwrap();
+        assert_eq!(e.texture.data, want, "round {round}");
+        let tmps: Vec<_> = std::fs::read_dir(&d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".tmp"))
+            .collect();
+        assert!(tmps.is_empty(), "round {round}: {tmps:?}");
+    }
+}
