@@ -106,6 +106,16 @@ impl TemporalFilter {
             TemporalFilter::Gauss { sigma } => {
                 ring_autocorrelation(&Filter::Gauss { sigma }.taps(), n)
             }
+            TemporalFilter::Ema { alpha, beta } if beta == 0.0 => {
+                // No history rejection: the EMA's steady state over a texture that loops every
+                // `n` frames. Its taps α(1 − α)^l for every age l fold onto the ring (frame
+                // t − l reads slice (t − l) mod n), a geometric sum per slice.
+                let fold = 1.0 / (1.0 - (1.0 - alpha).powi(n as i32));
+                let taps: Vec<f64> = (0..n)
+                    .map(|l| alpha * (1.0 - alpha).powi(l as i32) * fold)
+                    .collect();
+                ring_autocorrelation(&taps, n)
+            }
             TemporalFilter::Ema { alpha, beta } => {
                 let mut total = vec![0.0; n];
                 let mut weight = beta;

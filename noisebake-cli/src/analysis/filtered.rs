@@ -51,10 +51,15 @@ fn blur_axis(img: &[f64], w: usize, h: usize, taps: &[f64], along_x: bool) -> Ve
 /// (at least 64) and the last `t` frames are measured (the converged filter); without, every
 /// frame is measured.
 pub fn filtered_rmse(values: &[f64], dims: [usize; 3], d: &Denoiser) -> f64 {
+    filtered_rmse_at(values, dims, d, &STEPS)
+}
+
+/// [`filtered_rmse`] over the thresholds `steps`.
+pub fn filtered_rmse_at(values: &[f64], dims: [usize; 3], d: &Denoiser, steps: &[f64]) -> f64 {
     let [w, h, t] = dims;
     let n = w * h;
     let (mut sum, mut count) = (0.0, 0usize);
-    for &c in &STEPS {
+    for &c in steps {
         let frames: Vec<Vec<f64>> = (0..t)
             .map(|f| {
                 let img: Vec<f64> = values[f * n..(f + 1) * n]

@@ -200,6 +200,7 @@ pub fn scalar_params(combine: Combine) -> FastParams {
         },
         combine,
         iterations: None,
+        start: fast::Start::Random,
     }
 }
 
@@ -215,6 +216,7 @@ pub fn cosine_params() -> FastParams {
         },
         combine: Combine::Product,
         iterations: None,
+        start: fast::Start::Random,
     }
 }
 

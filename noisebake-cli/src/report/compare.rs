@@ -1,0 +1,271 @@
+//! Which scalar mask leaves the least error after the filter FAST is made for (Gaussian
+//! σ 1.3435 in space × EMA α 0.1, β 0.1 in time, product), measured two ways that do not trust
+//! the optimiser:
+//!
+//! - the FAST loss of eq. (7) of every mask, by the same code for every row;
+//! - the error after filtering, measured directly ([`filtered_rmse`]): Heaviside integrands at
+//!   thresholds across (0, 1), one sample per pixel and frame, each frame filtered in space
+//!   (toroidal), then an EMA over the looping texture run to its steady state, RMSE against the
+//!   true integral; for the Gaussian and for the 3×3 and 5×5 boxes games run.
+//!
+//! Rows: our FAST, EA's published texture (128×128×64 only; vendored in `testdata/`), our STBN
+//! (per-slice histograms), independent 2D blue noise, golden-ratio animated blue noise,
+//! interleaved gradient noise animated by the usual 5.588238 pixels per frame, R2 animated by the
+//! golden ratio, and white noise. The baked masks are u8, as EA ships its texture.
+
+use crate::analysis::filtered::{Denoiser, filtered_rmse};
+use build_assets::cache::Locator;
+use build_assets::fast::{self, Filter};
+use build_assets::spec::TextureSpec;
+use serde::Serialize;
+use std::path::Path;
+use std::time::Instant;
+
+/// One mask's row.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// The mask.
+    pub mask: String,
+    /// The FAST loss (eq. 7) for the Gaussian × EMA product filter (lower is better).
+    pub loss: f64,
+    /// The loss relative to white noise's (1 = white).
+    pub loss_vs_white: f64,
+    /// RMSE after Gaussian σ 1.3435 per frame + steady-state EMA α 0.1.
+    pub rmse_gauss: f64,
+    /// RMSE after a 3×3 box per frame + EMA.
+    pub rmse_box3: f64,
+    /// RMSE after a 5×5 box per frame + EMA.
+    pub rmse_box5: f64,
+    /// Seconds to make it (bake, or computing a hash; `null` for the published texture).
+    pub seconds: Option<f64>,
+    /// Whether the bake came from the cache (its time is then the original bake's unknown).
+    pub cached: bool,
+}
+
+/// The comparison at one size.
+#[derive(Clone, Debug, Serialize)]
+pub struct Table {
+    /// `[w, h, frames]`.
+    pub dims: [usize; 3],
+    /// One row per mask, in the order above.
+    pub rows: Vec<Row>,
+}
+
+/// The path of EA's FAST texture in the repository.
+pub fn ea_path() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../testdata/ea-fast-bsd3/real_uniform_gauss_1.3435_exponential_0.1_0.1_product.png")
+}
+
+/// EA's texture as values `(v + 0.5) / 256`, x fastest, 128 × 128 × 64.
+pub fn ea_values() -> Result<Vec<f64>, String> {
+    let img = image::open(ea_path())
+        .map_err(|e| format!("{}: {e}", ea_path().display()))?
+        .to_rgba8();
+    if img.dimensions() != (128, 128 * 64) {
+        return Err(format!(
+            "EA texture is {:?}, expected 128×8192",
+            img.dimensions()
+        ));
+    }
+    Ok(img
+        .pixels()
+        .map(|p| (p.0[0] as f64 + 0.5) / 256.0)
+        .collect())
+}
+
+/// Interleaved gradient noise (Jimenez 2014), animated by shifting x and y by 5.588238 pixels
+/// per frame, as games use it.
+pub fn ign(dims: [usize; 3]) -> Vec<f64> {
+    (0..dims[2])
+        .flat_map(|f| fast::ign_slice(dims[0], dims[1], f))
+        .collect()
+}
+
+/// The R2 low-discrepancy grid animated by the golden ratio (the runtime's `ldg::r2_frame`).
+pub fn r2(dims: [usize; 3]) -> Vec<f64> {
+    let [w, h, t] = dims;
+    (0..t)
+        .flat_map(|f| {
+            (0..h).flat_map(move |y| {
+                (0..w)
+                    .map(move |x| noise_runtime::ldg::r2_frame(x as i32, y as i32, f as u32) as f64)
+            })
+        })
+        .collect()
+}
+
+/// The FAST parameters the comparison is about.
+pub fn params() -> fast::FastParams {
+    super::fast::scalar_params(fast::Combine::Product)
+}
+
+/// The spec of a baked row: `kind` with extra TOML keys, u8.
+fn spec(name: &str, kind: &str, dims: [usize; 3], extra: &str) -> TextureSpec {
+    let text = format!(
+        "[[texture]]\nname = \"{name}\"\nkind = \"{kind}\"\ndims = [{}, {}, {}]\nseed = 1\nformat = \"u8\"\n{extra}",
+        dims[0], dims[1], dims[2]
+    );
+    build_assets::spec::parse_toml(&text)
+        .map_err(|e| e.render("compare", &text))
+        .expect("the comparison's specs are valid")
+        .textures
+        .remove(0)
+}
+
+/// The FAST spec of the comparison at `dims`.
+pub fn fast_spec(dims: [usize; 3]) -> TextureSpec {
+    spec(
+        "FAST",
+        "fast",
+        dims,
+        "spatial_filter = { kind = \"gauss\", sigma = 1.3435 }\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }",
+    )
+}
+
+/// Bakes `s` through the workspace cache; `(values, seconds, cached)`.
+fn bake(s: &TextureSpec, log: &mut dyn FnMut(&str)) -> Result<(Vec<f64>, f64, bool), String> {
+    let mut cache = Locator {
+        manifest_dir: Some(Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()),
+        ..Locator::default()
+    }
+    .resolve()
+    .map_err(|e| e.to_string())?;
+    if cache.lookup(s).is_none() {
+        let est = build_assets::estimate::estimate(s);
+        if est.seconds > 2.0 {
+            log(&format!(
+                "  baking {} {:?}: estimated {est}",
+                s.kind.name(),
+                s.dims
+            ));
+        }
+    }
+    let start = Instant::now();
+    let e = cache.get(s, &mut |_, _| {}).map_err(|e| e.to_string())?;
+    let cached = e.source == build_assets::cache::Source::Hit;
+    let secs = if cached {
+        e.seconds
+    } else {
+        start.elapsed().as_secs_f64()
+    };
+    Ok((e.texture.values(), secs, cached))
+}
+
+/// Loss and measured errors of one mask.
+pub fn measure(name: &str, values: &[f64], dims: [usize; 3], fp: &fast::Footprint) -> Row {
+    let loss = fast::optimize::loss::<1, _>(dims, fp, values, |a: &[f64; 1], b: &[f64; 1]| {
+        (a[0] - b[0]).abs()
+    });
+    let d = |spatial: Filter| Denoiser {
+        spatial: spatial.taps(),
+        ema_alpha: Some(0.1),
+    };
+    Row {
+        mask: name.into(),
+        loss,
+        loss_vs_white: f64::NAN,
+        rmse_gauss: filtered_rmse(values, dims, &d(Filter::Gauss { sigma: 1.3435 })),
+        rmse_box3: filtered_rmse(values, dims, &d(Filter::Box { size: 3 })),
+        rmse_box5: filtered_rmse(values, dims, &d(Filter::Box { size: 5 })),
+        seconds: None,
+        cached: false,
+    }
+}
+
+/// The table at `dims` (EA's row only at 128×128×64), the loss taken for `loss_params`' filter.
+pub fn table(
+    dims: [usize; 3],
+    loss_params: &fast::FastParams,
+    log: &mut dyn FnMut(&str),
+) -> Result<Table, String> {
+    let fp = loss_params.footprint(&dims);
+    let mut rows = Vec::new();
+    let baked = |name: &str, s: TextureSpec, log: &mut dyn FnMut(&str)| -> Result<Row, String> {
+        let (v, secs, cached) = bake(&s, log)?;
+        let mut r = measure(name, &v, dims, &fp);
+        r.seconds = Some(secs);
+        r.cached = cached;
+        Ok(r)
+    };
+    rows.push(baked("FAST (ours)", fast_spec(dims), log)?);
+    if dims == [128, 128, 64] {
+        rows.push(measure("FAST (EA, published)", &ea_values()?, dims, &fp));
+    }
+    rows.push(baked(
+        "STBN (ours, slice histograms)",
+        spec("STBN", "stbn", dims, "histogram = \"slice\""),
+        log,
+    )?);
+    rows.push(baked(
+        "independent 2D blue noise",
+        spec("IND", "independent2d", dims, ""),
+        log,
+    )?);
+    rows.push(baked(
+        "golden-ratio animated blue noise",
+        spec("GOLD", "golden", dims, ""),
+        log,
+    )?);
+    for (name, make) in [
+        (
+            "IGN (5.588238 px per frame)",
+            ign as fn([usize; 3]) -> Vec<f64>,
+        ),
+        ("R2 (golden-ratio animated)", r2),
+    ] {
+        let start = Instant::now();
+        let v = make(dims);
+        let secs = start.elapsed().as_secs_f64();
+        let mut r = measure(name, &v, dims, &fp);
+        r.seconds = Some(secs);
+        rows.push(r);
+    }
+    rows.push(baked("white noise", spec("WHITE", "white", dims, ""), log)?);
+    let white = rows.last().map_or(1.0, |r| r.loss);
+    for r in &mut rows {
+        r.loss_vs_white = r.loss / white;
+    }
+    Ok(Table { dims, rows })
+}
+
+/// The table as text, one line per row.
+pub fn describe(t: &Table) -> Vec<String> {
+    let mut out = vec![format!(
+        "  {}x{}x{}: {:<34} {:>14} {:>8} {:>10} {:>10} {:>10} {:>10}",
+        t.dims[0],
+        t.dims[1],
+        t.dims[2],
+        "mask",
+        "loss",
+        "/white",
+        "rmse gauss",
+        "rmse box3",
+        "rmse box5",
+        "seconds"
+    )];
+    for r in &t.rows {
+        out.push(format!(
+            "  {:<44} {:>14.1} {:>8.4} {:>10.5} {:>10.5} {:>10.5} {:>10}",
+            r.mask,
+            r.loss,
+            r.loss_vs_white,
+            r.rmse_gauss,
+            r.rmse_box3,
+            r.rmse_box5,
+            match (r.seconds, r.cached) {
+                (None, _) => "-".to_string(),
+                (Some(_), true) => "cached".to_string(),
+                (Some(s), false) => format!("{s:.2}"),
+            }
+        ));
+    }
+    out
+}
+
+impl Table {
+    /// The row named `prefix…`.
+    pub fn row(&self, prefix: &str) -> Option<&Row> {
+        self.rows.iter().find(|r| r.mask.starts_with(prefix))
+    }
+}
