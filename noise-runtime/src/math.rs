@@ -222,11 +222,19 @@ pub fn cos_turns(u: f32) -> f32 {
 /// bits.
 #[inline(always)]
 pub fn sqrt(x: f32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     {
         crate::lanes::sqrt1(x)
     }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    )))]
     {
         sqrt_soft(x)
     }

@@ -77,7 +77,11 @@ impl Narrowing {
 
     /// [`Narrowing::new`] for a ξ known to lie in `[0, 1)` (a remapped one), the same state
     /// without the sanitising steps, which would change nothing.
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     #[inline(always)]
     pub(crate) fn new_unit(xi: f32) -> Self {
         const ONE: u64 = 1 << FIXED_BITS;

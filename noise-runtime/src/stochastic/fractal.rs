@@ -214,9 +214,17 @@ pub(crate) fn octave_seed(seed: u32, o: u32) -> u32 {
 /// fBm of 3D Perlin noise (each octave with its own seed).
 #[inline(always)]
 pub fn fbm3(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     return fbm3_lanes(p, f, seed);
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    )))]
     fractal(p, f, |q, o| super::perlin::perlin3(q, octave_seed(seed, o)))
 }
 
@@ -225,7 +233,11 @@ pub fn fbm3(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
 /// [`perlin3`](super::perlin3)'s lane form. The same products and sums as [`fractal`], so the
 /// same bits (lane 3 of the register is 0 times the frequency, which the lane form ignores).
 /// (Ten octaves: 1618 instead of 1745 instructions a call, 4.5 % faster.)
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse2",
+    not(feature = "portable")
+))]
 #[inline(always)]
 fn fbm3_lanes(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
     use crate::lanes::F4;
@@ -245,7 +257,11 @@ fn fbm3_lanes(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
 /// one dot product whatever the octave count.
 #[inline(always)]
 pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     if let Some(v) = fbm3_stochastic_halving(p, f, seed, xi) {
         return v;
     }
@@ -265,7 +281,11 @@ pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
 /// mantissa, so it is exact, and so is the power-of-two scaling.) The split of `p · 2^o`
 /// would otherwise wait for the octave, and the estimator's time is that chain: 2.5–3 ns
 /// of 22.
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse2",
+    not(feature = "portable")
+))]
 #[inline(always)]
 fn fbm3_stochastic_halving(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> Option<f32> {
     use crate::lanes::{self, F4};

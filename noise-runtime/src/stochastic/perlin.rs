@@ -8,7 +8,11 @@ use super::estimators::{Narrowing, fresh_corner2, nested_corner, unit_corner};
 use super::hash::{CORNER_MUL, PRIME, corner};
 use crate::math::{dfade, fade, split};
 
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse2",
+    not(feature = "portable")
+))]
 pub(super) mod sse;
 
 #[inline(always)]
@@ -54,7 +58,7 @@ const GRAD3_ROWS: [[f32; 4]; 16] = [
 
 /// [`GRAD3`] by columns: `GRAD3_COLUMNS[a][j >> 3][j & 7]` is axis `a` of gradient `j`, for
 /// the batch forms, which read one axis of eight gradients at a time.
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
 pub(super) const GRAD3_COLUMNS: [[[f32; 8]; 2]; 3] = {
     let mut c = [[[0.0f32; 8]; 2]; 3];
     let mut j = 0;
@@ -216,11 +220,19 @@ fn perlin2_stochastic_with(p: [f32; 2], seed: u32, xi: f32, sp: impl Fn(f32) -> 
 #[inline(always)]
 pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
     // One predictable branch buys guard-free splits for every ordinary coordinate.
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     if let Some(v) = sse::perlin3(p, seed) {
         return v;
     }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    )))]
     if crate::math::in_split_range(p) {
         return perlin3_with(p, seed, crate::math::split_in_range);
     }
@@ -313,11 +325,19 @@ pub fn perlin3_grad_cell(cell: [i32; 3], f: [f32; 3], seed: u32) -> (f32, [f32; 
 /// One-sample estimator of [`perlin3`] (Algorithm 1 in 3D): one gradient instead of eight.
 #[inline(always)]
 pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     if let Some(v) = sse::perlin3_stochastic(p, seed, xi) {
         return v;
     }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    )))]
     if crate::math::in_split_range(p) {
         return perlin3_stochastic_in_range(p, seed, xi);
     }
@@ -334,7 +354,14 @@ pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
 /// free of branches (LLVM vectorises its compare).
 // On x86_64 the lane form in `sse` runs instead; this one is the code on other targets and,
 // here, the reference the lane form's test compares with.
-#[cfg_attr(all(target_arch = "x86_64", target_feature = "sse2"), allow(dead_code))]
+#[cfg_attr(
+    all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ),
+    allow(dead_code)
+)]
 #[inline(always)]
 fn perlin3_stochastic_in_range(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     let v = [p[0], p[1], p[2], 0.0];
@@ -427,11 +454,19 @@ fn corner_masks(c: usize) -> [u32; 4] {
 /// 4D Perlin noise (e.g. 3D noise animated over time).
 #[inline(always)]
 pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     if let Some(v) = sse::perlin4(p, seed) {
         return v;
     }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    )))]
     if crate::math::in_split_range(p) {
         return perlin4_with(p, seed, crate::math::split_in_range);
     }
@@ -489,11 +524,19 @@ pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 /// One-sample estimator of [`perlin4`]: one gradient instead of sixteen.
 #[inline(always)]
 pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     if let Some(v) = sse::perlin4_stochastic(p, seed, xi) {
         return v;
     }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    )))]
     if crate::math::in_split_range(p) {
         return perlin4_stochastic_with(p, seed, xi, crate::math::split_in_range);
     }

@@ -20,7 +20,11 @@ use crate::math::split;
 use lattice::{Corners, Skew};
 
 mod lattice;
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse2",
+    not(feature = "portable")
+))]
 mod sse;
 
 const G3: f32 = 1.0 / 6.0;
@@ -45,7 +49,14 @@ fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
 /// first along the largest offset, then the second: axis `a` is in the second corner when its
 /// rank (the number of other offsets it is at least, ties going to the earlier axis) is 2, in
 /// the third when it is at least 1.
-#[cfg(any(test, all(target_arch = "x86_64", target_feature = "sse2")))]
+#[cfg(any(
+    test,
+    all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    )
+))]
 #[inline(always)]
 fn rank_order(d0: [f32; 3]) -> ([i32; 3], [i32; 3]) {
     let ge = |a: usize, b: usize| (d0[a] >= d0[b]) as i32;
@@ -129,7 +140,11 @@ static GRAD: [[f32; 3]; 16] = {
 /// 3D simplex noise, in `[-1, 1]`.
 #[inline(always)]
 pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     if let Some(v) = sse::simplex3(p, seed) {
         return v;
     }
@@ -151,7 +166,11 @@ fn simplex3_scalar(p: [f32; 3], seed: u32) -> f32 {
 /// one octave instead of all of them is the saving.
 #[inline(always)]
 pub fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     if let Some(v) = sse::simplex3_stochastic(p, seed, xi) {
         return v;
     }
@@ -267,7 +286,11 @@ pub fn simplex3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
 /// 4D simplex noise, in `[-1, 1]`: five corners instead of [`perlin4`](super::perlin4)'s 16.
 #[inline(always)]
 pub fn simplex4(p: [f32; 4], seed: u32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     if let Some(v) = sse::simplex4(p, seed) {
         return v;
     }
@@ -293,7 +316,11 @@ pub fn simplex4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 /// choose the octave stochastically ([`fractal_stochastic`](super::fractal_stochastic)).
 #[inline(always)]
 pub fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     if let Some(v) = sse::simplex4_stochastic(p, seed, xi) {
         return v;
     }

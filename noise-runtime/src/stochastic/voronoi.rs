@@ -7,7 +7,11 @@
 
 use super::estimators::{roulette_in_range, sanitize_xi};
 use super::hash::{PRIME, corner, point3};
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse2",
+    not(feature = "portable")
+))]
 use crate::lanes::F4;
 use crate::math::{exp2_neg, in_split_range, ln, split, split_in_range, sqrt};
 
@@ -103,7 +107,11 @@ impl Hood {
 /// each distance is the scalar one's operations in the same order, so the same bits (the tests
 /// compare the two). Four lanes for 27 cells, not the three cells of a row: seven square roots
 /// and exponentials instead of nine.
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse2",
+    not(feature = "portable")
+))]
 #[inline(always)]
 fn groups_lanes(cell: crate::lanes::I4, f: F4, seed: u32) -> [F4; 7] {
     use super::hash::point3_row;
@@ -150,7 +158,11 @@ fn groups_lanes(cell: crate::lanes::I4, f: F4, seed: u32) -> [F4; 7] {
 
 /// Per group of [`groups_lanes`], per axis, the lanes' cell offsets negated: `1 − i` for the
 /// cell at index `i` (offset `i − 1`) along the axis.
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse2",
+    not(feature = "portable")
+))]
 const OFFSETS: [[[f32; 4]; 3]; 7] = {
     let mut o = [[[0.0f32; 4]; 3]; 7];
     let mut c = 0;
@@ -168,7 +180,11 @@ const OFFSETS: [[[f32; 4]; 3]; 7] = {
 #[inline]
 pub fn worley3_f1(p: [f32; 3], seed: u32) -> f32 {
     // All 27 cells, branch-free: faster than pruning, whose branches are unpredictable.
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     {
         let v = F4::from3(p);
         if crate::lanes::in_split_range(v) {
@@ -192,7 +208,11 @@ fn min(a: f32, b: f32) -> f32 {
 }
 
 /// The least lane of seven groups (no lane NaN).
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse2",
+    not(feature = "portable")
+))]
 #[inline(always)]
 fn min_lanes(d: &[F4; 7]) -> f32 {
     // A tree, for a short chain.
@@ -216,7 +236,11 @@ const EXP_SCALE: f32 = -32.0 * core::f32::consts::LOG2_E;
 /// exponential, and cost 81 ns against 64.
 #[inline]
 pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     {
         use crate::lanes;
         let v = F4::from3(p);
@@ -264,9 +288,17 @@ fn smooth_voronoi3_stochastic_of(x: f32, y: f32, z: f32, seed: u32, q: f32, xi: 
     let p = [x, y, z];
     let t = sanitize_xi(xi) * 8.0;
     // t is in [0, 8): its integer part is the cell's 3 bits, and t minus it is exact, in [0, 1).
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     let bits = crate::lanes::trunc1(t) as u32 & 7;
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    #[cfg(not(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    )))]
     let bits = (t as u32).min(7);
     let rest = t - bits as f32;
     let approx = picked_distance(p, seed, bits).min(0.5);
@@ -289,7 +321,11 @@ fn picked_distance(p: [f32; 3], seed: u32, bits: u32) -> f32 {
     // For a point in the split range its split on lanes; the offset it gives may be exactly 1
     // where the general split steps to the next cell with offset 0, which picks the same cells
     // at the same offsets (the tests compare the two).
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     {
         use crate::lanes::{self, F4};
         let v = F4::from3(p);
@@ -312,7 +348,11 @@ fn picked_distance(p: [f32; 3], seed: u32, bits: u32) -> f32 {
 /// only the three hash products are scalar (SSE2 has no 32-bit lane multiply). With masks of
 /// all ones for true, `−1 + [f ≥ ½]` is the mask of `f < ½` (0 or −1) and `+ bit` subtracts
 /// the bit's mask.
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse2",
+    not(feature = "portable")
+))]
 #[inline(always)]
 fn picked_distance_lanes(cell: crate::lanes::I4, f: F4, seed: u32, bits: u32) -> f32 {
     use crate::lanes::{self, I4};
@@ -477,7 +517,11 @@ mod tests {
         });
     }
 
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     #[test]
     fn lanes_are_the_scalar_forms_bit_for_bit() {
         use crate::lanes::{self, F4};
@@ -516,7 +560,11 @@ mod tests {
         assert!(seen > 20_000, "the lane path ran {seen} times");
     }
 
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse2",
+        not(feature = "portable")
+    ))]
     #[test]
     fn lane_square_root_and_exponential_are_the_scalar_ones_bit_for_bit() {
         use crate::lanes::{self, F4};
