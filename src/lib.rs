@@ -108,7 +108,7 @@
 //! | `white` | independent uniform values | 1–4 | — |
 //! | `independent2d` | an independent 2D mask per slice | 2–4 | `sigma` (1.9), `initial_density` |
 //! | `golden` | one 2D mask animated by `t·φ` per frame | 3 | `sigma` (1.9), `initial_density` |
-//! | `fast` | FAST filter-adapted mask, 2D or 2D × time (Donnelly et al. 2024) | 2–3 | `sample_space` (`"scalar"`, `"circle"`, `"vec2"`…`"vec4"`, `"sphere"`, `"hemisphere"`, `"cosine_hemisphere"`), `distribution` (`"uniform"`, `"tent"`, `"gauss"`; scalar only), `spatial_filter` (`{ kind = "gauss", sigma = 1.3435 }`, `{ kind = "box", size = 5 }`, `{ kind = "binomial", order = 2 }`, `{ kind = "none" }`), `temporal_filter` (`{ kind = "ema", alpha = 0.1, beta = 0.1 }` for 3 dims, `gauss`, `box`, `none`), `combine` (`"product"` or `{ separate = w }`), `iterations` (until converged) |
+//! | `fast` | FAST filter-adapted mask, 2D or 2D × time (Donnelly et al. 2024) | 2–3 | `sample_space` (`"scalar"`, `"circle"`, `"vec2"`…`"vec4"`, `"sphere"`, `"hemisphere"`, `"cosine_hemisphere"`), `distribution` (`"uniform"`, `"tent"`, `"gauss"`; scalar only), `spatial_filter` (`{ kind = "gauss", sigma = 1.3435 }`, `{ kind = "box", size = 5 }`, `{ kind = "binomial", order = 2 }`, `{ kind = "none" }`), `temporal_filter` (`{ kind = "ema", alpha = 0.1, beta = 0.1 }` for 3 dims — `beta = 0` is a plain EMA at its steady state over the looping texture, `beta > 0` adds eq. 17's history rejection — `gauss`, `box`, `none`), `combine` (`"product"` or `{ separate = w }`), `start` (`"ign"`, the default for scalars: IGN's per-slice ranks; `"random"`), `iterations` (until converged) |
 //!
 //! One example per kind, in spec-file form (the macro takes the same as `key: value`):
 //!
@@ -146,12 +146,12 @@
 //! kind = "golden"
 //! dims = [64, 64, 16]
 //!
-//! [[texture]]                 # FAST for a Gaussian blur and an EMA, as EA publishes it
+//! [[texture]]                 # FAST for the filter a game runs: a Gaussian blur and a plain EMA
 //! name = "FAST"
 //! kind = "fast"
 //! dims = [64, 64, 16]
 //! spatial_filter = { kind = "gauss", sigma = 1.3435 }
-//! temporal_filter = { kind = "ema", alpha = 0.1, beta = 0.1 }
+//! temporal_filter = { kind = "ema", alpha = 0.1, beta = 0 }
 //!
 //! [[texture]]                 # FAST cosine-weighted hemisphere directions (ambient occlusion)
 //! name = "AO_DIRS"

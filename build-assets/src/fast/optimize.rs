@@ -19,7 +19,7 @@ use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::time::Instant;
 
 /// A round whose loss decrease is below this fraction of the decrease so far ends optimisation.
-pub const CONVERGED: f64 = 1e-4;
+pub const CONVERGED: f64 = 2e-3;
 /// Preferred tile side (texels); tiles are never narrower than the footprint radius + 1.
 const TILE: usize = 16;
 /// Half-width of the window near partners are drawn from.

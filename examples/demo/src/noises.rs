@@ -24,7 +24,7 @@ pub enum Noise {
     Golden,
     /// Spatiotemporal blue noise.
     Stbn,
-    /// FAST, optimised for a Gaussian filter and an EMA.
+    /// FAST, optimised for the demo's own filter: a Gaussian blur (σ 1 px) and an EMA.
     Fast,
 }
 
@@ -53,6 +53,11 @@ impl Noise {
             Noise::Stbn => "stbn",
             Noise::Fast => "fast",
         }
+    }
+
+    /// A hash computed in the shader: no texture to bake, ship or sample.
+    pub fn is_free_hash(self) -> bool {
+        matches!(self, Noise::Ign | Noise::R2)
     }
 
     /// The `k`-th uniform number of pixel `(x, y)` in frame `f`, in `[0, 1)`. Masks give

@@ -73,6 +73,7 @@ pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), Stri
             );
         }
         html += "</table>\n";
+        let _ = writeln!(html, "<p><b>{}</b></p>", verdict(r));
         for (kind, pick) in [("mc", 0usize), ("ema", 1)] {
             let series: Vec<Series> = r
                 .runs
@@ -164,7 +165,51 @@ pub fn summary(results: &[AppResult], cfg: &Config) {
             "{:<13} {:<14} reference rendered in {:.2} s",
             r.name, "", r.reference_seconds
         );
+        println!("{:<13} {}", "", verdict(r));
     }
+}
+
+/// Which noise leaves the least error in an application after EMA + blur, and where a free
+/// hash (IGN, R2: one line of shader code, no texture) is within 5 % of the best mask: from
+/// this run's numbers.
+pub fn verdict(r: &AppResult) -> String {
+    let best = r
+        .runs
+        .iter()
+        .map(|(m, _)| m)
+        .min_by(|a, b| a.denoised.total_cmp(&b.denoised));
+    let Some(best) = best else {
+        return String::new();
+    };
+    let free = r
+        .runs
+        .iter()
+        .map(|(m, _)| m)
+        .filter(|m| m.noise.is_free_hash())
+        .min_by(|a, b| a.denoised.total_cmp(&b.denoised));
+    let mut s = format!(
+        "least error after EMA + blur: {} ({:.4})",
+        best.noise.name(),
+        best.denoised
+    );
+    if let Some(f) = free {
+        if best.noise.is_free_hash() {
+            s += "; a free hash wins here: no texture needed";
+        } else if f.denoised <= 1.05 * best.denoised {
+            s += &format!(
+                "; {} ({:.4}) is within 5 % and needs no texture",
+                f.noise.name(),
+                f.denoised
+            );
+        } else {
+            s += &format!(
+                "; the best free hash, {}, leaves {:.0} % more",
+                f.noise.name(),
+                100.0 * (f.denoised / best.denoised - 1.0)
+            );
+        }
+    }
+    s
 }
 
 /// Appends the CNJ and stochastic-noise panels to `index.html`.

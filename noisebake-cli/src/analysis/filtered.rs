@@ -98,3 +98,39 @@ pub fn filtered_rmse_at(values: &[f64], dims: [usize; 3], d: &Denoiser, steps: &
     }
     (sum / count as f64).sqrt()
 }
+
+/// The RMSE after each of `frames` frames of spatial filtering + EMA, started from the first
+/// frame (the history holds frame 0), over [`STEPS`] and pixels: how fast each mask converges.
+pub fn filtered_rmse_curve(
+    values: &[f64],
+    dims: [usize; 3],
+    d: &Denoiser,
+    frames: usize,
+) -> Vec<f64> {
+    let [w, h, t] = dims;
+    let n = w * h;
+    let alpha = d.ema_alpha.unwrap_or(1.0);
+    let mut sums = vec![0.0; frames];
+    for &c in &STEPS {
+        let filtered: Vec<Vec<f64>> = (0..t)
+            .map(|f| {
+                let img: Vec<f64> = values[f * n..(f + 1) * n]
+                    .iter()
+                    .map(|&s| if s < c { 1.0 } else { 0.0 })
+                    .collect();
+                blur(&img, w, h, &d.spatial)
+            })
+            .collect();
+        let mut hist = filtered[0].clone();
+        for (f, sum) in sums.iter_mut().enumerate() {
+            if f > 0 {
+                for (hv, &v) in hist.iter_mut().zip(&filtered[f % t]) {
+                    *hv = alpha * v + (1.0 - alpha) * *hv;
+                }
+            }
+            *sum += hist.iter().map(|v| (v - c) * (v - c)).sum::<f64>();
+        }
+    }
+    let count = (STEPS.len() * n) as f64;
+    sums.iter().map(|s| (s / count).sqrt()).collect()
+}

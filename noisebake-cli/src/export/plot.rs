@@ -30,8 +30,8 @@ pub struct Labels {
     pub y: String,
 }
 
-/// Distinct colours for up to eight series (the "tab10" palette).
-pub const PALETTE: [[u8; 3]; 8] = [
+/// Distinct colours for up to ten series (the "tab10" palette).
+pub const PALETTE: [[u8; 3]; 10] = [
     [214, 39, 40],
     [31, 119, 180],
     [44, 160, 44],
@@ -40,6 +40,8 @@ pub const PALETTE: [[u8; 3]; 8] = [
     [140, 86, 75],
     [227, 119, 194],
     [23, 190, 207],
+    [127, 127, 127],
+    [188, 189, 34],
 ];
 
 /// Width and height of every plot, in pixels.

@@ -13,7 +13,7 @@
 //! interleaved gradient noise animated by the usual 5.588238 pixels per frame, R2 animated by the
 //! golden ratio, and white noise. The baked masks are u8, as EA ships its texture.
 
-use crate::analysis::filtered::{Denoiser, filtered_rmse};
+use crate::analysis::filtered::{Denoiser, filtered_rmse, filtered_rmse_curve};
 use build_assets::cache::Locator;
 use build_assets::fast::{self, Filter};
 use build_assets::spec::TextureSpec;
@@ -26,10 +26,16 @@ use std::time::Instant;
 pub struct Row {
     /// The mask.
     pub mask: String,
-    /// The FAST loss (eq. 7) for the Gaussian × EMA product filter (lower is better).
+    /// The FAST loss (eq. 7) of the filter the measurement runs: Gaussian σ 1.3435 × EMA α 0.1
+    /// at its steady state over the looping texture (β = 0). Its differences are the measured
+    /// error's expectation (lower is better).
     pub loss: f64,
     /// The loss relative to white noise's (1 = white).
     pub loss_vs_white: f64,
+    /// The loss with history rejection β = 0.1 (FAST eq. 17), the filter EA's texture was
+    /// made for; it models an EMA whose history is dropped with probability β each frame,
+    /// which the measurement does not run.
+    pub loss_beta_0_1: f64,
     /// RMSE after Gaussian σ 1.3435 per frame + steady-state EMA α 0.1.
     pub rmse_gauss: f64,
     /// RMSE after a 3×3 box per frame + EMA.
@@ -40,6 +46,8 @@ pub struct Row {
     pub seconds: Option<f64>,
     /// Whether the bake came from the cache (its time is then the original bake's unknown).
     pub cached: bool,
+    /// RMSE after Gaussian + EMA after each of the first 64 frames (from frame 0).
+    pub curve: Vec<f64>,
 }
 
 /// The comparison at one size.
@@ -113,13 +121,15 @@ fn spec(name: &str, kind: &str, dims: [usize; 3], extra: &str) -> TextureSpec {
         .remove(0)
 }
 
-/// The FAST spec of the comparison at `dims`.
-pub fn fast_spec(dims: [usize; 3]) -> TextureSpec {
+/// The FAST spec of the comparison at `dims` with history rejection `beta`.
+pub fn fast_spec(dims: [usize; 3], beta: f64) -> TextureSpec {
     spec(
         "FAST",
         "fast",
         dims,
-        "spatial_filter = { kind = \"gauss\", sigma = 1.3435 }\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }",
+        &format!(
+            "spatial_filter = {{ kind = \"gauss\", sigma = 1.3435 }}\ntemporal_filter = {{ kind = \"ema\", alpha = 0.1, beta = {beta:?} }}"
+        ),
     )
 }
 
@@ -152,34 +162,45 @@ fn bake(s: &TextureSpec, log: &mut dyn FnMut(&str)) -> Result<(Vec<f64>, f64, bo
     Ok((e.texture.values(), secs, cached))
 }
 
-/// Loss and measured errors of one mask.
-pub fn measure(name: &str, values: &[f64], dims: [usize; 3], fp: &fast::Footprint) -> Row {
-    let loss = fast::optimize::loss::<1, _>(dims, fp, values, |a: &[f64; 1], b: &[f64; 1]| {
-        (a[0] - b[0]).abs()
-    });
+/// The FAST parameters of the two losses: β = 0 (the measured filter) and β = 0.1 (EA's).
+pub fn loss_params(beta: f64) -> fast::FastParams {
+    let mut p = params();
+    p.temporal = fast::TemporalFilter::Ema { alpha: 0.1, beta };
+    p
+}
+
+/// Loss and measured errors of one mask; `fps` are the footprints of β = 0 and β = 0.1.
+pub fn measure(name: &str, values: &[f64], dims: [usize; 3], fps: &[fast::Footprint; 2]) -> Row {
+    let l = |fp: &fast::Footprint| {
+        fast::optimize::loss::<1, _>(dims, fp, values, |a: &[f64; 1], b: &[f64; 1]| {
+            (a[0] - b[0]).abs()
+        })
+    };
     let d = |spatial: Filter| Denoiser {
         spatial: spatial.taps(),
         ema_alpha: Some(0.1),
     };
+    let gauss = d(Filter::Gauss { sigma: 1.3435 });
     Row {
         mask: name.into(),
-        loss,
+        loss: l(&fps[0]),
         loss_vs_white: f64::NAN,
-        rmse_gauss: filtered_rmse(values, dims, &d(Filter::Gauss { sigma: 1.3435 })),
+        loss_beta_0_1: l(&fps[1]),
+        rmse_gauss: filtered_rmse(values, dims, &gauss),
         rmse_box3: filtered_rmse(values, dims, &d(Filter::Box { size: 3 })),
         rmse_box5: filtered_rmse(values, dims, &d(Filter::Box { size: 5 })),
         seconds: None,
         cached: false,
+        curve: filtered_rmse_curve(values, dims, &gauss, 64),
     }
 }
 
-/// The table at `dims` (EA's row only at 128×128×64), the loss taken for `loss_params`' filter.
-pub fn table(
-    dims: [usize; 3],
-    loss_params: &fast::FastParams,
-    log: &mut dyn FnMut(&str),
-) -> Result<Table, String> {
-    let fp = loss_params.footprint(&dims);
+/// The table at `dims` (EA's row only at 128×128×64).
+pub fn table(dims: [usize; 3], log: &mut dyn FnMut(&str)) -> Result<Table, String> {
+    let fp = [
+        loss_params(0.0).footprint(&dims),
+        loss_params(0.1).footprint(&dims),
+    ];
     let mut rows = Vec::new();
     let baked = |name: &str, s: TextureSpec, log: &mut dyn FnMut(&str)| -> Result<Row, String> {
         let (v, secs, cached) = bake(&s, log)?;
@@ -188,7 +209,16 @@ pub fn table(
         r.cached = cached;
         Ok(r)
     };
-    rows.push(baked("FAST (ours)", fast_spec(dims), log)?);
+    rows.push(baked(
+        "FAST (ours, for the measured EMA, beta 0)",
+        fast_spec(dims, 0.0),
+        log,
+    )?);
+    rows.push(baked(
+        "FAST (ours, EA's parameters, beta 0.1)",
+        fast_spec(dims, 0.1),
+        log,
+    )?);
     if dims == [128, 128, 64] {
         rows.push(measure("FAST (EA, published)", &ea_values()?, dims, &fp));
     }
@@ -232,13 +262,14 @@ pub fn table(
 /// The table as text, one line per row.
 pub fn describe(t: &Table) -> Vec<String> {
     let mut out = vec![format!(
-        "  {}x{}x{}: {:<34} {:>14} {:>8} {:>10} {:>10} {:>10} {:>10}",
+        "  {}x{}x{}: {:<36} {:>14} {:>8} {:>14} {:>10} {:>10} {:>10} {:>8}",
         t.dims[0],
         t.dims[1],
         t.dims[2],
         "mask",
         "loss",
         "/white",
+        "loss b=0.1",
         "rmse gauss",
         "rmse box3",
         "rmse box5",
@@ -246,21 +277,51 @@ pub fn describe(t: &Table) -> Vec<String> {
     )];
     for r in &t.rows {
         out.push(format!(
-            "  {:<44} {:>14.1} {:>8.4} {:>10.5} {:>10.5} {:>10.5} {:>10}",
+            "  {:<48} {:>14.2} {:>8.5} {:>14.2} {:>10.5} {:>10.5} {:>10.5} {:>8}",
             r.mask,
             r.loss,
             r.loss_vs_white,
+            r.loss_beta_0_1,
             r.rmse_gauss,
             r.rmse_box3,
             r.rmse_box5,
             match (r.seconds, r.cached) {
                 (None, _) => "-".to_string(),
                 (Some(_), true) => "cached".to_string(),
-                (Some(s), false) => format!("{s:.2}"),
+                (Some(s), false) => format!("{s:.1}"),
             }
         ));
     }
     out
+}
+
+/// Plots each row's RMSE after Gaussian + EMA against frames (log scale).
+pub fn plot(t: &Table, path: &Path) -> Result<(), String> {
+    use crate::export::plot::{Labels, PALETTE, Series, line_plot};
+    let series: Vec<Series> = t
+        .rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| Series {
+            label: r.mask.clone(),
+            color: PALETTE[i % PALETTE.len()],
+            points: r
+                .curve
+                .iter()
+                .enumerate()
+                .map(|(f, &e)| ((f + 1) as f64, e))
+                .collect(),
+        })
+        .collect();
+    let labels = Labels {
+        title: format!(
+            "{}x{}x{}: error after Gaussian σ 1.3435 + EMA α 0.1",
+            t.dims[0], t.dims[1], t.dims[2]
+        ),
+        x: "frames".into(),
+        y: "RMSE over thresholds (log scale)".into(),
+    };
+    line_plot(path, &series, &labels, true).map(|_| ())
 }
 
 impl Table {

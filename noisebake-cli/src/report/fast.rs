@@ -99,6 +99,9 @@ pub struct FastReport {
     /// With `full` and `paper`: the first 1 000 of the paper schedule's 10 000 iterations
     /// (γ ≤ 1/8) at 128×128×32, against our 3-minute run there.
     pub paper_full_size: Option<PaperRun>,
+    /// Every mask against our FAST under the filter EA published for, at 64×64×64 and
+    /// 128×128×64 ([`super::compare`]).
+    pub comparison: Vec<super::compare::Table>,
 }
 
 /// Runs the paper's schedule (10 000 iterations with γ capped at 1/4 and 1/8; 1 000 as published,
@@ -438,10 +441,29 @@ pub fn run(
         paper_run(&cosine_params(), &[128, 128, 32], 0.125, 1_000, ours, log)
     });
     let paper = paper.then(|| paper_comparison(&[64, 64, 16], log));
+    let mut comparison = Vec::new();
+    for dims in [[64, 64, 64], [128, 128, 64]] {
+        log(&format!(
+            "  comparison at {}x{}x{}: Gaussian σ 1.3435 x EMA α 0.1, measured at the EMA's steady state over the looping texture",
+            dims[0], dims[1], dims[2]
+        ));
+        let t = super::compare::table(dims, log)?;
+        for line in super::compare::describe(&t) {
+            log(&line);
+        }
+        let path = out.join(format!(
+            "fast_compare_{}x{}x{}.png",
+            dims[0], dims[1], dims[2]
+        ));
+        super::compare::plot(&t, &path)?;
+        log(&format!("  plot {}", path.display()));
+        comparison.push(t);
+    }
     Ok(FastReport {
         runs,
         errors: errs,
         paper,
         paper_full_size,
+        comparison,
     })
 }
