@@ -31,7 +31,7 @@ const FAST_C: f64 = 4e-10;
 /// Vector sample spaces cost this much more per pair (a distance in 2–4 dimensions).
 const FAST_VECTOR: f64 = 6.0;
 /// Rounds FAST typically runs before it converges.
-const FAST_ROUNDS: f64 = 70.0;
+const FAST_ROUNDS: f64 = 40.0;
 
 /// Generations expected to take longer than this get an up-front message.
 pub const ANNOUNCE_SECONDS: f64 = 10.0;

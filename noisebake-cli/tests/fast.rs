@@ -1,6 +1,7 @@
 //! FAST masks (Donnelly et al. 2024): exact monotone optimisation, flat slices, thread-count
 //! independence, and the paper's claims about error after filtering (§6).
 
+#[path = "../../build-assets/tests/common/mod.rs"]
 mod common;
 use build_assets::fast::{self, Combine, FastParams, Filter};
 use common::{error, gen_tex};

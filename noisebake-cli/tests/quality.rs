@@ -1,6 +1,7 @@
 //! Quality of the masks, measured as ARCHITECTURE.md says: spatial and temporal low-frequency power,
 //! per-slice histograms and per-pixel convergence (STBN §4.2, Fig. 5, 6, 8).
 
+#[path = "../../build-assets/tests/common/mod.rs"]
 mod common;
 use build_assets::generate::blue2d_ranks;
 use common::{gen_tex, testdata};

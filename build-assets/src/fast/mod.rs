@@ -73,10 +73,10 @@ pub enum Start {
 }
 
 /// Rounds run when no `iterations` cap is given and convergence is not reached earlier. From
-/// IGN's ranks the loss keeps falling slowly for hundreds of rounds; by 80 the measured error is
+/// IGN's ranks the loss keeps falling slowly for hundreds of rounds; by 40 the measured error is
 /// within a few percent of where it ends, and a 128×128×64 mask bakes in minutes (the report's
 /// comparison gives the times).
-pub const MAX_ROUNDS: u32 = 80;
+pub const MAX_ROUNDS: u32 = 40;
 
 impl FastParams {
     /// The canonical form of the parameters (part of the cache key).

@@ -24,3 +24,12 @@ pub fn error(body: &str) -> String {
         Err(e) => e.render("noise.toml", &text),
     }
 }
+
+/// A file of the repository's vendored reference data (`testdata/`, each with its licence).
+pub fn testdata(path: &str) -> std::path::PathBuf {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../testdata")
+        .join(path);
+    assert!(p.exists(), "{} is missing from the repository", p.display());
+    p
+}

@@ -54,21 +54,26 @@ pub fn filtered_rmse(values: &[f64], dims: [usize; 3], d: &Denoiser) -> f64 {
     filtered_rmse_at(values, dims, d, &STEPS)
 }
 
+/// Every frame of the step integrand `[s < c]`, one sample per pixel, filtered by `taps`.
+fn step_frames(values: &[f64], [w, h, t]: [usize; 3], taps: &[f64], c: f64) -> Vec<Vec<f64>> {
+    let n = w * h;
+    (0..t)
+        .map(|f| {
+            let img: Vec<f64> = values[f * n..(f + 1) * n]
+                .iter()
+                .map(|&s| if s < c { 1.0 } else { 0.0 })
+                .collect();
+            blur(&img, w, h, taps)
+        })
+        .collect()
+}
+
 /// [`filtered_rmse`] over the thresholds `steps`.
 pub fn filtered_rmse_at(values: &[f64], dims: [usize; 3], d: &Denoiser, steps: &[f64]) -> f64 {
-    let [w, h, t] = dims;
-    let n = w * h;
+    let t = dims[2];
     let (mut sum, mut count) = (0.0, 0usize);
     for &c in steps {
-        let frames: Vec<Vec<f64>> = (0..t)
-            .map(|f| {
-                let img: Vec<f64> = values[f * n..(f + 1) * n]
-                    .iter()
-                    .map(|&s| if s < c { 1.0 } else { 0.0 })
-                    .collect();
-                blur(&img, w, h, &d.spatial)
-            })
-            .collect();
+        let frames = step_frames(values, dims, &d.spatial, c);
         match d.ema_alpha {
             None => {
                 for fr in &frames {
@@ -112,15 +117,7 @@ pub fn filtered_rmse_curve(
     let alpha = d.ema_alpha.unwrap_or(1.0);
     let mut sums = vec![0.0; frames];
     for &c in &STEPS {
-        let filtered: Vec<Vec<f64>> = (0..t)
-            .map(|f| {
-                let img: Vec<f64> = values[f * n..(f + 1) * n]
-                    .iter()
-                    .map(|&s| if s < c { 1.0 } else { 0.0 })
-                    .collect();
-                blur(&img, w, h, &d.spatial)
-            })
-            .collect();
+        let filtered = step_frames(values, dims, &d.spatial, c);
         let mut hist = filtered[0].clone();
         for (f, sum) in sums.iter_mut().enumerate() {
             if f > 0 {
