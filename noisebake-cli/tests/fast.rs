@@ -3,7 +3,7 @@
 
 #[path = "../../build-assets/tests/common/mod.rs"]
 mod common;
-use build_assets::fast::{self, Combine, FastParams, Filter};
+use build_assets::fast::{self, Combine, FastParams, Filter, TemporalFilter};
 use common::{error, gen_tex};
 use noisebake_cli::analysis::filtered::{Denoiser, filtered_rmse};
 use noisebake_cli::report::fast::scalar_params;
@@ -96,8 +96,18 @@ fn baseline(kind: &str, dims: [usize; 3]) -> Vec<f64> {
 #[test]
 fn beats_baselines_after_its_filter_and_product_vs_separate() {
     let dims = [48, 48, 12];
-    let prod = run(&scalar_params(Combine::Product), &dims, 1).samples;
-    let sep = run(&scalar_params(Combine::Separate(0.5)), &dims, 1).samples;
+    // Made for the filters the measurement runs: the plain EMA at its steady state (β = 0).
+    let params = |c: Combine| {
+        let mut p = scalar_params(c);
+        p.temporal = TemporalFilter::Ema {
+            alpha: 0.1,
+            beta: 0.0,
+        };
+        p.start = fast::Start::Ign;
+        p
+    };
+    let prod = run(&params(Combine::Product), &dims, 1).samples;
+    let sep = run(&params(Combine::Separate(0.5)), &dims, 1).samples;
     let taps = Filter::Gauss { sigma: 1.3435 }.taps();
     let both = Denoiser {
         spatial: taps,
@@ -152,9 +162,9 @@ fn bad_fast_specs_name_the_key() {
     );
     has(
         error(
-            "kind = \"fast\"\ndims = [16, 16, 4]\ntemporal_filter = { kind = \"ema\", beta = 0 }",
+            "kind = \"fast\"\ndims = [16, 16, 4]\ntemporal_filter = { kind = \"ema\", beta = -0.5 }",
         ),
-        &["`temporal_filter.beta` must be in (0, 1], got 0"],
+        &["`temporal_filter.beta` must be in [0, 1], got -0.5"],
     );
     has(
         error("kind = \"fast\"\ndims = [16, 16, 4]\nsample_space = \"hemisphre\""),
