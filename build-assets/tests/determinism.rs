@@ -59,6 +59,6 @@ const GOLDEN: [u64; 8] = [
     0x21a8de4dc539ee8f,
     0xfd30af622a49b1ad,
     0x678bc41f284dccd3,
-    0xc6482407d8a648cd,
+    0xb46763619e63402d,
     0x88bfe38174830359,
 ];
