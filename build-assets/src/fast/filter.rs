@@ -106,7 +106,7 @@ impl TemporalFilter {
             TemporalFilter::Gauss { sigma } => {
                 ring_autocorrelation(&Filter::Gauss { sigma }.taps(), n)
             }
-            TemporalFilter::Ema { alpha, beta } if beta == 0.0 => {
+            TemporalFilter::Ema { alpha, beta: 0.0 } => {
                 // No history rejection: the EMA's steady state over a texture that loops every
                 // `n` frames. Its taps α(1 − α)^l for every age l fold onto the ring (frame
                 // t − l reads slice (t − l) mod n), a geometric sum per slice.
