@@ -198,9 +198,11 @@ impl Parse for Input {
 /// An invalid spec is a compile error at the offending token (the key, or its value), and the
 /// item is still declared with zeroed bytes so uses of it add no errors of their own. The macro
 /// shares the cache with build scripts (see the `noisebake` front page, "The cache and offline
-/// builds"); when it generates a texture it says so on stderr, with the time taken, and a
-/// build that finds the texture in the cache prints nothing. Under rust-analyzer a cache miss
-/// gives a placeholder instead of a long generation.
+/// builds"); when it generates a texture or replaces a corrupt entry it says so on stderr, with
+/// the time taken. A generation never costs a second compile; Cargo shows the line again on
+/// fresh builds until the crate next compiles (it replays what a compile printed), and a compile
+/// that finds the texture in the cache prints nothing. Under rust-analyzer a cache miss gives a
+/// placeholder instead of a long generation.
 #[proc_macro]
 pub fn noise_texture(tokens: proc_macro::TokenStream) -> proc_macro::TokenStream {
     let input = match syn::parse::<Input>(tokens) {
