@@ -7,12 +7,12 @@
 //! ```
 
 use build_assets::cache::{Locator, Source};
+use build_assets::export::png;
 use build_assets::export::{npy, write_atomic};
 use build_assets::spec::{self, Span, Spanned, Table, TextureSpec, Value};
 use build_assets::{Texture, generate};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use noisebake_cli::export::png;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};

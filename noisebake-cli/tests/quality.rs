@@ -3,10 +3,10 @@
 
 #[path = "../../build-assets/tests/common/mod.rs"]
 mod common;
+use build_assets::export::png::read_gray;
 use build_assets::generate::blue2d_ranks;
 use common::{gen_tex, testdata};
 use noisebake_cli::analysis::{MaskReport, analyze, spatial_lf};
-use noisebake_cli::export::png::read_gray;
 
 fn report(kind: &str, extra: &str) -> MaskReport {
     analyze(&gen_tex(&format!(

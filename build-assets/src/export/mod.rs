@@ -1,8 +1,10 @@
-//! Writing textures out: NumPy `.npy` and raw little-endian `.bin`. Every writer goes through a
-//! temporary file and a rename, so an interrupted run never leaves a half-written file under the
-//! final name. (PNG slices and plots are the CLI's: `noisebake-cli`.)
+//! Writing textures out: NumPy `.npy`, raw little-endian `.bin`, and PNG slices (feature
+//! `png`). Every writer goes through a temporary file and a rename, so an interrupted run never
+//! leaves a half-written file under the final name.
 
 pub mod npy;
+#[cfg(feature = "png")]
+pub mod png;
 
 use std::io;
 use std::path::Path;

@@ -6,10 +6,10 @@
 //! is exactly where the paper says stochastic noise is safe. Reports time and RMSE against a
 //! 1024-spp reference for each (single thread).
 
+use build_assets::export::png::write_slices;
 use build_assets::spec::Format;
 use build_assets::texture::Texture;
 use noisebake::stochastic::{Fractal, fbm3, fbm3_stochastic};
-use noisebake_cli::export::png::write_slices;
 use std::time::Instant;
 
 const SIZE: usize = 64;

@@ -1,4 +1,3 @@
-//! PNG output: one image per 2D slice of a texture ([`png`]) and line plots ([`plot`]).
+//! Line plots as PNG ([`plot`]). PNG slices of textures are `build_assets::export::png`.
 
 pub mod plot;
-pub mod png;

@@ -1,8 +1,8 @@
 //! PNG slices: each 2D (x, y) slice of a texture as its own image, 8-bit for u8 masks and
 //! 16-bit for u16 and f32 masks (f32 scaled by 65536), RGB/RGBA 8-bit for vector formats.
 
-use build_assets::spec::Scalar;
-use build_assets::texture::Texture;
+use crate::spec::Scalar;
+use crate::texture::Texture;
 use image::{ImageBuffer, Luma};
 use std::path::{Path, PathBuf};
 
@@ -22,7 +22,7 @@ pub fn slice_names(stem: &str, dims: &[usize]) -> Vec<String> {
 }
 
 /// Whether [`write_slices`] can write a format: scalars of any type, u8 RGB and RGBA.
-pub fn supported(f: build_assets::spec::Format) -> bool {
+pub fn supported(f: crate::spec::Format) -> bool {
     f.channels == 1 || (f.scalar == Scalar::U8 && matches!(f.channels, 3 | 4))
 }
 
@@ -48,7 +48,7 @@ pub fn write_slices(t: &Texture, dir: &Path, stem: &str) -> Result<Vec<PathBuf>,
                 image::ImageEncoder::write_image(enc, bytes, w, h, image::ExtendedColorType::Rgba8)
             }
             (_, 1) => {
-                let vals: Vec<u16> = build_assets::spec::decode_unit(bytes, t.format.scalar)
+                let vals: Vec<u16> = crate::spec::decode_unit(bytes, t.format.scalar)
                     .iter()
                     .map(|v| (v * 65536.0).floor().clamp(0.0, 65535.0) as u16)
                     .collect();
@@ -66,8 +66,7 @@ pub fn write_slices(t: &Texture, dir: &Path, stem: &str) -> Result<Vec<PathBuf>,
             }
         };
         res.map_err(|e| e.to_string())?;
-        build_assets::export::write_atomic(&path, &png)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        super::write_atomic(&path, &png).map_err(|e| format!("{}: {e}", path.display()))?;
         paths.push(path);
     }
     Ok(paths)
