@@ -15,6 +15,15 @@ fn tmp(name: &str) -> PathBuf {
     d
 }
 
+/// Names of the files in `dir` ending with any of `suffixes`.
+fn files_ending(dir: &std::path::Path, suffixes: &[&str]) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| suffixes.iter().any(|s| n.ends_with(s)))
+        .collect()
+}
+
 const STBN: &str = "kind = \"stbn\"\ndims = [16, 16, 4]\nseed = 5\nformat = \"u16\"";
 
 #[test]
@@ -115,12 +124,10 @@ fn eight_concurrent_bakes_generate_once_and_all_read_a_complete_entry() {
         "the generator runs once"
     );
     assert!(results.iter().all(|e| e.texture.data == want));
-    let leftovers: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
-        .collect();
-    assert!(leftovers.is_empty(), "no temporary files left behind");
+    assert!(
+        files_ending(&dir, &[".tmp"]).is_empty(),
+        "no temporary files left behind"
+    );
 }
 
 #[test]
@@ -250,17 +257,8 @@ fn blocked_entry_paths_cost_the_cache_not_the_build() {
         c.warnings
     );
     for d in [&main, &fb] {
-        let tmps = std::fs::read_dir(d)
-            .unwrap()
-            .filter(|e| {
-                e.as_ref()
-                    .unwrap()
-                    .file_name()
-                    .to_string_lossy()
-                    .ends_with(".tmp")
-            })
-            .count();
-        assert_eq!(tmps, 0, "{}", d.display());
+        let tmps = files_ending(d, &[".tmp"]);
+        assert!(tmps.is_empty(), "{}: {tmps:?}", d.display());
     }
     // With only the main entry blocked, the fallback takes it and says so.
     std::fs::remove_dir(Cache::path_in(&fb, &s)).unwrap();
@@ -505,11 +503,7 @@ fn a_full_disk_costs_the_cache_not_the_build() {
         "{:?}",
         c.warnings
     );
-    let left: Vec<_> = std::fs::read_dir(small.join("cache"))
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".tmp") || n.ends_with(".nbk"))
-        .collect();
+    let left = files_ending(&small.join("cache"), &[".tmp", ".nbk"]);
     assert!(left.is_empty(), "left on the full disk: {left:?}");
     // Both full: still the texture, uncached, with a warning.
     let mut c = Cache::new(small.join("cache"));
@@ -572,11 +566,7 @@ fn kill_9_mid_bake_leaves_nothing_wrong() {
         let mut c = Cache::new(&d);
         let e = c.get(&s, &mut |_, _| {}).unwrap();
         assert_eq!(e.texture.data, want, "round {round}");
-        let tmps: Vec<_> = std::fs::read_dir(&d)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .filter(|n| n.ends_with(".tmp"))
-            .collect();
+        let tmps = files_ending(&d, &[".tmp"]);
         assert!(tmps.is_empty(), "round {round}: {tmps:?}");
     }
 }

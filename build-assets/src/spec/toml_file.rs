@@ -147,24 +147,16 @@ pub fn parse_toml(text: &str) -> Result<SpecFile, SpecError> {
                 }
             }
             ("cache_dir", Value::Str(s)) => cache_dir = Some(s.clone()),
-            ("cache_dir", other) => {
+            (key @ ("cache_dir" | "texture"), other) => {
+                let want = if key == "texture" {
+                    "an array of tables ([[texture]])"
+                } else {
+                    "a string (a directory relative to this file)"
+                };
                 return Err(SpecError::at(
-                    "cache_dir",
+                    key,
                     v.span,
-                    format!(
-                        "`cache_dir` must be a string (a directory relative to this file), got {}",
-                        other.type_name()
-                    ),
-                ));
-            }
-            ("texture", other) => {
-                return Err(SpecError::at(
-                    "texture",
-                    v.span,
-                    format!(
-                        "`texture` must be an array of tables ([[texture]]), got {}",
-                        other.type_name()
-                    ),
+                    format!("`{key}` must be {want}, got {}", other.type_name()),
                 ));
             }
             (key, _) => {
