@@ -16,6 +16,8 @@
 //! - [`cnj`]: curl-noise jittering (Bærentzen et al. 2023): closest-point and k-nearest queries
 //!   on a jittered triangular (2D) or BCC (3D) lattice, and Worley noise built on them, with no
 //!   point set stored.
+//! - [`shaders`]: the same functions in WGSL, for wgpu and Bevy, and how a mask is uploaded
+//!   ([`Mask3::gpu_texture`]).
 //! - [`stochastic`]: Perlin, simplex, fractal, sparse convolution, Gabor and smooth Voronoi
 //!   noise, each deterministic and as an unbiased one-sample estimator (Fajardo & Pharr).
 //!
@@ -73,10 +75,11 @@ pub mod ldg;
 pub mod mask;
 pub mod math;
 pub mod sequence;
+pub mod shaders;
 pub mod stochastic;
 pub mod texel;
 pub mod warp;
 
 pub use coord::Coord;
-pub use mask::{Mask2, Mask3, Mask4};
-pub use texel::Texel;
+pub use mask::{GpuTexture, Mask2, Mask3, Mask4};
+pub use texel::{GpuFormat, Texel};

@@ -5,7 +5,7 @@
 
 use crate::coord::Coord;
 use crate::sequence::{r2_point, scale};
-use crate::texel::Texel;
+use crate::texel::{GpuFormat, Texel};
 use core::marker::PhantomData;
 
 /// Why bytes cannot back a view.
@@ -20,7 +20,7 @@ pub struct SizeMismatch {
 macro_rules! mask {
     (
         $(#[$doc:meta])*
-        $name:ident, $n:literal, [$($d:ident),+], [$($c:ident),+]
+        $name:ident, $n:literal, [$($d:ident),+], [$($c:ident),+], layers = $layers:expr
     ) => {
         $(#[$doc])*
         #[derive(Clone, Copy, Debug)]
@@ -54,6 +54,30 @@ macro_rules! mask {
             /// The raw little-endian bytes.
             pub const fn bytes(&self) -> &'static [u8] {
                 self.bytes
+            }
+
+            /// The mask as a GPU texture: a 2D array of `W × H` layers (see [`GpuTexture`]).
+            pub const fn gpu_texture(&self) -> GpuTexture {
+                let [w, h, ..] = Self::DIMS;
+                GpuTexture {
+                    width: w,
+                    height: h,
+                    layers: $layers,
+                    format: GpuFormat::for_texel(T::BYTES / T::CHANNELS, T::CHANNELS),
+                }
+            }
+
+            /// The bytes to upload as [`gpu_texture`](Self::gpu_texture), when they need no
+            /// padding (every format but 3-channel vectors): the baked bytes themselves.
+            pub fn gpu_bytes(&self) -> Option<&'static [u8]> {
+                (T::CHANNELS != 3).then_some(self.bytes)
+            }
+
+            /// Writes the bytes to upload as [`gpu_texture`](Self::gpu_texture) into `out`,
+            /// padding 3-channel texels to 4 (see [`GpuFormat::pad`]). `out` must be exactly
+            /// [`GpuTexture::byte_len`] long.
+            pub fn write_gpu_bytes(&self, out: &mut [u8]) -> Result<(), SizeMismatch> {
+                write_gpu_bytes(self.bytes, self.gpu_texture(), T::CHANNELS, out)
             }
 
             #[inline(always)]
@@ -99,15 +123,15 @@ macro_rules! mask {
 
 mask!(
     /// A 2D mask: `get(x, y)`.
-    Mask2, 2, [W, H], [x, y]
+    Mask2, 2, [W, H], [x, y], layers = 1
 );
 mask!(
     /// A 3D mask over (x, y, t): spatiotemporal masks, one 2D slice per frame.
-    Mask3, 3, [W, H, D], [x, y, t]
+    Mask3, 3, [W, H, D], [x, y, t], layers = D
 );
 mask!(
     /// A 4D mask over (x, y, z, w), e.g. 2D×1D×1D or 2D×2D blue noise.
-    Mask4, 4, [W, H, D, E], [x, y, z, w]
+    Mask4, 4, [W, H, D, E], [x, y, z, w], layers = D * E
 );
 
 impl<T: Texel, const W: u32, const H: u32> Mask2<T, W, H> {
@@ -162,6 +186,62 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, 
         let yi = (y.wrap(H) + scale(oy, H)).wrap(H);
         T::read(self.bytes, self.index(xi, yi, z.wrap(D), w.wrap(E)))
     }
+}
+
+/// A mask as a GPU sees it: a 2D array texture of `layers` slices of `width × height` texels,
+/// one mip level. A 2D mask is one layer; a 3D mask one layer per time slice; a 4D mask
+/// `(x, y, z, w)` is flattened layer-major, layer `z + D·w` (the bytes' own order). In WGSL
+/// bind it as `texture_2d_array<f32>` (unorm and float formats) or `texture_2d_array<u32>`
+/// (`r16uint`…) and read it with `textureLoad`, as `shaders/noisebake.wgsl` does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GpuTexture {
+    /// Texels per row.
+    pub width: u32,
+    /// Rows per layer.
+    pub height: u32,
+    /// Array layers.
+    pub layers: u32,
+    /// The texture format (3-channel masks are padded to 4 channels).
+    pub format: GpuFormat,
+}
+
+impl GpuTexture {
+    /// Bytes of one row of the uploaded data (no row padding: wgpu's `Queue::write_texture`
+    /// takes any row pitch).
+    pub const fn bytes_per_row(&self) -> u32 {
+        self.width * self.format.texel_bytes() as u32
+    }
+
+    /// Bytes of the whole uploaded texture.
+    pub const fn byte_len(&self) -> usize {
+        self.bytes_per_row() as usize * self.height as usize * self.layers as usize
+    }
+}
+
+fn write_gpu_bytes(
+    bytes: &[u8],
+    tex: GpuTexture,
+    channels: usize,
+    out: &mut [u8],
+) -> Result<(), SizeMismatch> {
+    if out.len() != tex.byte_len() {
+        return Err(SizeMismatch {
+            expected: tex.byte_len(),
+            actual: out.len(),
+        });
+    }
+    let cb = tex.format.channel_bytes();
+    let (src_texel, dst_texel) = (cb * channels, tex.format.texel_bytes());
+    for (src, dst) in bytes
+        .chunks_exact(src_texel)
+        .zip(out.chunks_exact_mut(dst_texel))
+    {
+        dst[..src_texel].copy_from_slice(src);
+        for pad in dst[src_texel..].chunks_exact_mut(cb) {
+            pad.copy_from_slice(tex.format.pad());
+        }
+    }
+    Ok(())
 }
 
 /// `bytes[offset..offset + len]` in a `const` context: the texel data of an included file that

@@ -37,6 +37,16 @@ pub fn hash4(x: i32, y: i32, z: i32, w: i32, seed: u32) -> u32 {
         ^ (w as u32).wrapping_mul(0x165_667b1))
 }
 
+/// The PCG hash of one 32-bit word (PCG-RXS-M-XS; Jarzynski & Olano 2020, "Hash Functions for
+/// GPU Rendering", §3): one LCG step, then a random xorshift, a multiply and a fixed xorshift.
+/// The usual per-pixel seed hash in shaders; `nb_pcg` in the WGSL library is the same function.
+#[inline(always)]
+pub fn pcg(v: u32) -> u32 {
+    let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+    (word >> 22) ^ word
+}
+
 /// Per-axis multipliers of the lattice hashes: a corner's hash is the xor of its coordinates
 /// times these, times one more odd constant — one multiply per corner once the axis products
 /// are known, which is what keeps gradient noise fast.

@@ -88,7 +88,7 @@ pub use estimators::{
 };
 pub use fractal::{Fractal, fbm3, fbm3_stochastic, fractal, fractal_stochastic};
 pub use gabor::{Gabor, GaborNoise, gabor3, gabor3_stochastic};
-pub use hash::{hash2, hash3, hash4};
+pub use hash::{hash2, hash3, hash4, pcg};
 pub use perlin::{
     perlin2, perlin2_grad, perlin2_stochastic, perlin3, perlin3_grad, perlin3_grad_cell,
     perlin3_stochastic, perlin4, perlin4_grad, perlin4_stochastic,

@@ -1,0 +1,40 @@
+//! The runtime's functions in WGSL, for games that sample noise on the GPU.
+//!
+//! [`WGSL`] is `shaders/noisebake.wgsl`: plain WGSL (no preprocessor, no bindings of its own),
+//! so it can be prepended to a wgpu shader module or loaded as a Bevy shader library. Every
+//! function is prefixed `nb_` and computes what the runtime function of the same name does:
+//!
+//! | WGSL | runtime | agreement |
+//! |---|---|---|
+//! | `nb_mask_coord_k`, `nb_wrap` | [`Mask3::get_k`](crate::Mask3::get_k)'s texel address | bit for bit (integer) |
+//! | `nb_unorm8_unit`, `nb_u16_unit` | [`Texel::unit`](crate::Texel::unit) of a loaded texel | bit for bit |
+//! | `nb_r2`, `nb_r2_frame`, `nb_plus`, `nb_plus_frame`, `nb_bayer`, `nb_bayer_frame` | [`ldg`](crate::ldg) | bit for bit (64-bit fixed point emulated in `u32` pairs) |
+//! | `nb_ign`, `nb_ign_frame` | [`ldg::ign`](crate::ldg::ign) | within 2⁻²³ (the CPU rounds an `f64`) |
+//! | `nb_hash2`, `nb_hash3`, `nb_pcg` | [`stochastic::hash2`](crate::stochastic::hash2), [`pcg`](crate::stochastic::pcg) | bit for bit |
+//! | `nb_perlin3`, `nb_fbm3`, `nb_perlin3_estimate`, `nb_fbm3_estimate` | [`stochastic::perlin3`](crate::stochastic::perlin3) … | within tolerances (below) |
+//! | `nb_cnj2_closest` | [`Cnj2::closest`](crate::cnj::Cnj2::closest) | same site; point within tolerance |
+//!
+//! The floating-point functions cannot agree bit for bit: WGSL lets an implementation fuse
+//! `a * b + c` into one rounding (GPUs do), and has no `f64`, which the CPU's CNJ queries use.
+//! The tolerances, derived in the file's comments and checked on a Vulkan device by the
+//! `noisebake-gpu` tests, are: Perlin and fBm values within `2^-16` (a few roundings of values
+//! of magnitude ≤ 4 per step); the estimators the same, except that a decision whose weight
+//! lands within one rounding of ξ's cut may go the other way (a different, equally valid
+//! corner or octave) — measured at about one input in 10⁵. Coordinates must lie within
+//! `|p| < 2^22` (the runtime's fast split range; beyond it the GPU's `floor` and `i32`
+//! conversion no longer match the CPU's exact split).
+//!
+//! # Using it
+//!
+//! ```
+//! let source = format!("{}\n{}", noise_runtime::shaders::WGSL, "
+//! @group(0) @binding(0) var<storage, read_write> out: array<f32>;
+//! @compute @workgroup_size(64)
+//! fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+//!     out[id.x] = nb_r2_frame(vec2<i32>(i32(id.x), 0), 7u);
+//! }");
+//! assert!(source.contains("fn nb_perlin3"));
+//! ```
+
+/// The WGSL library (`shaders/noisebake.wgsl`).
+pub const WGSL: &str = include_str!("../../shaders/noisebake.wgsl");

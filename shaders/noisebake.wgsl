@@ -1,0 +1,601 @@
+// noisebake.wgsl: noisebake's runtime functions for the GPU.
+//
+// Plain WGSL: no preprocessor, no bindings, no entry points. Prepend it to a shader module
+// (wgpu), or load it as a Bevy shader library. Every function is prefixed `nb_` and computes
+// what the runtime function of the same name computes on the CPU (noise_runtime, Rust); the
+// `noisebake-gpu` tests run each one on a Vulkan device and compare.
+//
+// Agreement with the CPU:
+// - Integer work (mask addresses, R2 and golden-ratio offsets, the grids, the hashes) is the
+//   same bit for bit. The runtime takes its products in 64-bit fixed point; WGSL has no 64-bit
+//   integers, so they are taken here in pairs of u32 (`vec2<u32>(low, high)`).
+// - Floating-point functions (Perlin, fBm, their estimators, CNJ) agree within tolerances:
+//   WGSL lets an implementation fuse `a * b + c` into one rounding and has no f64. See
+//   noise_runtime::shaders for the tolerances and the tests for how they are measured.
+// - Coordinates of the gradient noises must satisfy |p| < 2^22 (the runtime's fast range).
+//
+// Licence: MIT OR Apache-2.0, as the rest of noisebake.
+
+// ---------------------------------------------------------------------------------------------
+// 64-bit arithmetic in u32 pairs
+
+// The high 32 bits of the 64-bit product a·b.
+fn nb_mulhi(a: u32, b: u32) -> u32 {
+    let a0 = a & 0xffffu;
+    let a1 = a >> 16u;
+    let b0 = b & 0xffffu;
+    let b1 = b >> 16u;
+    let p00 = a0 * b0;
+    let p01 = a0 * b1;
+    let p10 = a1 * b0;
+    let mid = (p00 >> 16u) + (p01 & 0xffffu) + (p10 & 0xffffu);
+    return a1 * b1 + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u);
+}
+
+// The wrapping 64-bit product of two (low, high) pairs.
+fn nb_mul64(a: vec2<u32>, b: vec2<u32>) -> vec2<u32> {
+    return vec2<u32>(a.x * b.x, nb_mulhi(a.x, b.x) + a.x * b.y + a.y * b.x);
+}
+
+// The wrapping 64-bit sum of two (low, high) pairs.
+fn nb_add64(a: vec2<u32>, b: vec2<u32>) -> vec2<u32> {
+    let lo = a.x + b.x;
+    return vec2<u32>(lo, a.y + b.y + select(0u, 1u, lo < a.x));
+}
+
+// An i32 sign-extended to 64 bits.
+fn nb_wide(v: i32) -> vec2<u32> {
+    return vec2<u32>(bitcast<u32>(v), select(0u, 0xffffffffu, v < 0));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sequences (noise_runtime::sequence): R2 (Roberts 2018) and the golden ratio in fixed point
+
+// 2^64/ρ and 2^64/ρ², ρ the plastic number; 2^64·(φ − 1), φ the golden ratio.
+const NB_R2_A1 = vec2<u32>(0x02a6328fu, 0xc13fa9a9u);
+const NB_R2_A2 = vec2<u32>(0xc79e7b1cu, 0x91e10da5u);
+const NB_GOLDEN = vec2<u32>(0x7f4a7c15u, 0x9e3779b9u);
+
+// frac(k·α) as a 32-bit fraction: the high word of the 64-bit product k·α.
+fn nb_frac_mul(k: u32, alpha: vec2<u32>) -> u32 {
+    return nb_mulhi(k, alpha.x) + k * alpha.y;
+}
+
+// The k-th R2 point without its ½ seed, as 32-bit fractions (sequence::r2_point).
+fn nb_r2_point(k: u32) -> vec2<u32> {
+    return vec2<u32>(nb_frac_mul(k, NB_R2_A1), nb_frac_mul(k, NB_R2_A2));
+}
+
+// frac(k·(φ − 1)) as a 32-bit fraction (sequence::golden).
+fn nb_golden(k: u32) -> u32 {
+    return nb_frac_mul(k, NB_GOLDEN);
+}
+
+// A 32-bit fraction scaled to 0..n: floor(f·n / 2^32) (sequence::scale).
+fn nb_scale(f: u32, n: u32) -> u32 {
+    return nb_mulhi(f, n);
+}
+
+// A 32-bit fraction as an f32 in [0, 1): its top 24 bits, exactly (sequence::to_unit).
+fn nb_to_unit(f: u32) -> f32 {
+    return f32(f >> 8u) * (1.0 / 16777216.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Masks (noise_runtime::mask): toroidal wrap and the k-th value through R2 offsets
+
+// c mod n in 0..n for any i32 c (Coord::wrap): a mask for powers of two.
+fn nb_wrap(c: i32, n: u32) -> u32 {
+    if ((n & (n - 1u)) == 0u) {
+        return bitcast<u32>(c) & (n - 1u);
+    }
+    if (c >= 0) {
+        return u32(c) % n;
+    }
+    let m = (0u - bitcast<u32>(c)) % n;
+    return select(n - m, 0u, m == 0u);
+}
+
+fn nb_wrap_u(c: u32, n: u32) -> u32 {
+    if ((n & (n - 1u)) == 0u) {
+        return c & (n - 1u);
+    }
+    return c % n;
+}
+
+// The texel (x, y, layer) holding the k-th independent value of pixel p.xy in frame p.z of a
+// mask of dims (width, height, layers): the pixel offset by the k-th R2 point scaled to the
+// mask (STBN §5.2; FAST §6). k = 0 is the pixel itself. Mask3::get_k's address, bit for bit.
+fn nb_mask_coord_k(p: vec3<i32>, dims: vec3<u32>, k: u32) -> vec3<u32> {
+    let o = nb_r2_point(k);
+    return vec3<u32>(
+        nb_wrap_u(nb_wrap(p.x, dims.x) + nb_scale(o.x, dims.x), dims.x),
+        nb_wrap_u(nb_wrap(p.y, dims.y) + nb_scale(o.y, dims.y), dims.y),
+        nb_wrap(p.z, dims.z),
+    );
+}
+
+// The same for a 4D mask (x, y, z, w) uploaded layer-major: layer z + D·w (Mask4::get_k).
+fn nb_mask4_coord_k(p: vec4<i32>, dims: vec4<u32>, k: u32) -> vec3<u32> {
+    let c = nb_mask_coord_k(p.xyz, dims.xyz, k);
+    return vec3<u32>(c.xy, c.z + dims.z * nb_wrap(p.w, dims.w));
+}
+
+// The k-th value of a unorm or float mask (r8unorm, rgba8unorm, r32float, …) at pixel p.xy,
+// frame p.z. Unorm channels arrive as v/255; see nb_unorm8_unit for the runtime's v/256.
+fn nb_mask_load(t: texture_2d_array<f32>, p: vec3<i32>, k: u32) -> vec4<f32> {
+    let c = nb_mask_coord_k(p, vec3<u32>(textureDimensions(t), textureNumLayers(t)), k);
+    return textureLoad(t, c.xy, c.z, 0);
+}
+
+// The k-th value of a 16-bit mask (r16uint) at pixel p.xy, frame p.z.
+fn nb_mask_load_u(t: texture_2d_array<u32>, p: vec3<i32>, k: u32) -> vec4<u32> {
+    let c = nb_mask_coord_k(p, vec3<u32>(textureDimensions(t), textureNumLayers(t)), k);
+    return textureLoad(t, c.xy, c.z, 0);
+}
+
+// An 8-bit unorm channel as loaded (v/255) to the runtime's unit value v/256 (Texel::unit):
+// the value a threshold compares against, bit for bit.
+fn nb_unorm8_unit(v: f32) -> f32 {
+    return round(v * 255.0) * (1.0 / 256.0);
+}
+
+// A 16-bit channel (r16uint) to the runtime's unit value v/65536 (Texel::unit).
+fn nb_u16_unit(v: u32) -> f32 {
+    return f32(v) * (1.0 / 65536.0);
+}
+
+// The k-th value of pixel p.xy in frame p.z of a scalar 8-bit mask, in [0, 1) as
+// Mask3::get_k_unit gives it.
+fn nb_mask_unit(t: texture_2d_array<f32>, p: vec3<i32>, k: u32) -> f32 {
+    return nb_unorm8_unit(nb_mask_load(t, p, k).x);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Low-discrepancy grids (noise_runtime::ldg), exact for every i32 coordinate
+
+fn nb_r2_bits(p: vec2<i32>) -> u32 {
+    return nb_add64(nb_mul64(nb_wide(p.x), NB_R2_A1), nb_mul64(nb_wide(p.y), NB_R2_A2)).y;
+}
+
+// The R2 grid frac(x/ρ + y/ρ²) (ldg::r2).
+fn nb_r2(p: vec2<i32>) -> f32 {
+    return nb_to_unit(nb_r2_bits(p));
+}
+
+// R2 animated by the golden ratio per frame (ldg::r2_frame).
+fn nb_r2_frame(p: vec2<i32>, frame: u32) -> f32 {
+    return nb_to_unit(nb_r2_bits(p) + nb_golden(frame));
+}
+
+// A value in [0, 1) advanced by frame·(φ − 1) mod 1 (ldg's animation).
+fn nb_animate(v: f32, frame: u32) -> f32 {
+    return nb_to_unit(u32(v * 4294967296.0) + nb_golden(frame));
+}
+
+// The plus-shaped grid ((x + 3y + ½)/5) mod 1 (ldg::plus).
+fn nb_plus(p: vec2<i32>) -> f32 {
+    let k = (nb_wrap(p.x, 5u) + 3u * nb_wrap(p.y, 5u)) % 5u;
+    return (f32(k) + 0.5) * 0.2;
+}
+
+fn nb_plus_frame(p: vec2<i32>, frame: u32) -> f32 {
+    return nb_animate(nb_plus(p), frame);
+}
+
+// Interleaved gradient noise (Jimenez 2014), frac(52.9829189·frac(0.06711056x + 0.00583715y)),
+// as a 32-bit fraction: the inner fraction exact in 64-bit fixed point, the outer product as
+// 52·f (exact) plus 0.9829189·f (to 2^-32). The runtime rounds an f64 instead: the two agree
+// to within 2^-23, modulo 1.
+fn nb_ign_bits(p: vec2<i32>) -> u32 {
+    let inner = nb_add64(
+        nb_mul64(nb_wide(p.x), vec2<u32>(0x6a8f1506u, 0x112e285cu)),
+        nb_mul64(nb_wide(p.y), vec2<u32>(0x5a129b0du, 0x017e8b20u)),
+    );
+    let whole = 52u * inner.y + nb_mulhi(52u, inner.x);
+    return whole + nb_mulhi(0xfba092b2u, inner.y);
+}
+
+fn nb_ign(p: vec2<i32>) -> f32 {
+    return nb_to_unit(nb_ign_bits(p));
+}
+
+// IGN animated by the golden ratio per frame (ldg::ign_frame).
+fn nb_ign_frame(p: vec2<i32>, frame: u32) -> f32 {
+    return nb_to_unit(nb_ign_bits(p) + nb_golden(frame));
+}
+
+// The Bayer matrix of size 2^log2n (log2n in 1..=11, clamped), tiled: (index + ½)/N²
+// (ldg::bayer::<N>; exact up to N = 2048).
+fn nb_bayer(p: vec2<i32>, log2n: u32) -> f32 {
+    let levels = clamp(log2n, 1u, 11u);
+    let x = bitcast<u32>(p.x);
+    let y = bitcast<u32>(p.y);
+    var index = 0u;
+    for (var k = 0u; k < levels; k++) {
+        let xb = (x >> k) & 1u;
+        let yb = (y >> k) & 1u;
+        index |= (((xb ^ yb) << 1u) | yb) << (2u * (levels - 1u - k));
+    }
+    return ldexp(f32(index) + 0.5, -2 * i32(levels));
+}
+
+fn nb_bayer_frame(p: vec2<i32>, log2n: u32, frame: u32) -> f32 {
+    return nb_animate(nb_bayer(p, log2n), frame);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hashes (noise_runtime::stochastic::hash)
+
+// The runtime's 32-bit avalanche mix.
+fn nb_mix(x: u32) -> u32 {
+    var h = x;
+    h ^= h >> 16u;
+    h *= 0x7feb352du;
+    h ^= h >> 15u;
+    h *= 0x846ca68bu;
+    h ^= h >> 16u;
+    return h;
+}
+
+const NB_PRIME = vec4<u32>(0x8da6b343u, 0xd8163841u, 0xcb1ab31fu, 0x165667b1u);
+const NB_CORNER_MUL = 0x27d4eb2du;
+
+// Hash of a 2D cell (stochastic::hash2).
+fn nb_hash2(p: vec2<i32>, seed: u32) -> u32 {
+    let c = bitcast<vec2<u32>>(p) * NB_PRIME.xy;
+    return nb_mix(seed ^ c.x ^ c.y);
+}
+
+// Hash of a 3D cell (stochastic::hash3).
+fn nb_hash3(p: vec3<i32>, seed: u32) -> u32 {
+    let c = bitcast<vec3<u32>>(p) * NB_PRIME.xyz;
+    return nb_mix(seed ^ c.x ^ c.y ^ c.z);
+}
+
+// The PCG hash of one word (PCG-RXS-M-XS; Jarzynski & Olano 2020) (stochastic::pcg).
+fn nb_pcg(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3D Perlin noise and fBm (noise_runtime::stochastic), deterministic and one-sample estimators
+// (Fajardo & Pharr, Algorithms 1 and 2)
+
+// The 12 cube-edge gradients of improved noise padded to 16 (Perlin 2002), the runtime's order.
+var<private> NB_GRAD3: array<vec3<f32>, 16> = array<vec3<f32>, 16>(
+    vec3<f32>(1.0, 1.0, 0.0), vec3<f32>(-1.0, 1.0, 0.0), vec3<f32>(1.0, -1.0, 0.0), vec3<f32>(-1.0, -1.0, 0.0),
+    vec3<f32>(1.0, 0.0, 1.0), vec3<f32>(-1.0, 0.0, 1.0), vec3<f32>(1.0, 0.0, -1.0), vec3<f32>(-1.0, 0.0, -1.0),
+    vec3<f32>(0.0, 1.0, 1.0), vec3<f32>(0.0, -1.0, 1.0), vec3<f32>(0.0, 1.0, -1.0), vec3<f32>(0.0, -1.0, -1.0),
+    vec3<f32>(1.0, 1.0, 0.0), vec3<f32>(1.0, -1.0, 0.0), vec3<f32>(-1.0, 1.0, 0.0), vec3<f32>(0.0, -1.0, -1.0),
+);
+
+// The gradient of a corner hash: its top four bits choose.
+fn nb_grad3(h: u32) -> vec3<f32> {
+    return NB_GRAD3[h >> 28u];
+}
+
+// Perlin's quintic fade 6t⁵ − 15t⁴ + 10t³ (math::fade).
+fn nb_fade(t: f32) -> f32 {
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+fn nb_lerp(t: f32, a: f32, b: f32) -> f32 {
+    return a + t * (b - a);
+}
+
+// The dot product of corner (xp, yp, zp)'s gradient with the offset d.
+fn nb_corner(seed: u32, xp: u32, yp: u32, zp: u32, d: vec3<f32>) -> f32 {
+    let g = nb_grad3((seed ^ xp ^ yp ^ zp) * NB_CORNER_MUL);
+    return g.x * d.x + g.y * d.y + g.z * d.z;
+}
+
+// 3D Perlin noise (improved noise), about [-1, 1] (stochastic::perlin3).
+fn nb_perlin3(p: vec3<f32>, seed: u32) -> f32 {
+    let fl = floor(p);
+    let f = p - fl;
+    let lo = bitcast<vec3<u32>>(vec3<i32>(fl)) * NB_PRIME.xyz;
+    let hi = lo + NB_PRIME.xyz;
+    let u = nb_fade(f.x);
+    let v = nb_fade(f.y);
+    let w = nb_fade(f.z);
+    let g = f - vec3<f32>(1.0);
+    return nb_lerp(
+        w,
+        nb_lerp(
+            v,
+            nb_lerp(u, nb_corner(seed, lo.x, lo.y, lo.z, f), nb_corner(seed, hi.x, lo.y, lo.z, vec3<f32>(g.x, f.y, f.z))),
+            nb_lerp(u, nb_corner(seed, lo.x, hi.y, lo.z, vec3<f32>(f.x, g.y, f.z)), nb_corner(seed, hi.x, hi.y, lo.z, vec3<f32>(g.x, g.y, f.z))),
+        ),
+        nb_lerp(
+            v,
+            nb_lerp(u, nb_corner(seed, lo.x, lo.y, hi.z, vec3<f32>(f.x, f.y, g.z)), nb_corner(seed, hi.x, lo.y, hi.z, vec3<f32>(g.x, f.y, g.z))),
+            nb_lerp(u, nb_corner(seed, lo.x, hi.y, hi.z, vec3<f32>(f.x, g.y, g.z)), nb_corner(seed, hi.x, hi.y, hi.z, g)),
+        ),
+    );
+}
+
+// The largest f32 below 1.
+const NB_ONE_BELOW: f32 = 0.99999994;
+
+// ξ clamped into [0, 1): negatives and NaN to 0, 1 and above to the largest f32 below 1
+// (estimators::sanitize_xi).
+fn nb_sanitize_xi(xi: f32) -> f32 {
+    let b = bitcast<u32>(xi);
+    return min(bitcast<f32>(select(0u, b, b <= 0x7f800000u)), NB_ONE_BELOW);
+}
+
+// A weight in [0, 1] as a fixed-point number with 23 fractional bits (estimators::fixed).
+fn nb_fixed(t: f32) -> u32 {
+    return bitcast<u32>(t + 1.0) - 0x3f800000u;
+}
+
+// The interval one ξ narrows as Algorithm 1 decides axis after axis (estimators::Narrowing):
+// ξ's residue r in it and its length l, in 23-bit fixed point.
+struct NbNarrowing {
+    r: u32,
+    l: u32,
+}
+
+fn nb_narrowing(xi: f32) -> NbNarrowing {
+    return NbNarrowing(min(nb_fixed(nb_sanitize_xi(xi)), 0x7fffffu), 0x800000u);
+}
+
+// One decision with weight t: all ones when the upper side was taken (Narrowing::upper).
+fn nb_upper(n: ptr<function, NbNarrowing>, t: f32) -> u32 {
+    let w = nb_fixed(t);
+    // (l·w) >> 23 in 64 bits: both factors are at most 2^23 (and an ulp).
+    let cut = (nb_mulhi((*n).l, w) << 9u) | (((*n).l * w) >> 23u);
+    let up = select(0u, 0xffffffffu, (*n).r < cut);
+    if (up == 0u) {
+        (*n).r -= cut;
+        (*n).l -= cut;
+    } else {
+        (*n).l = cut;
+    }
+    return up;
+}
+
+// One-sample estimator of nb_perlin3 (Algorithm 1): one corner, chosen with probability equal
+// to its interpolation weight by one ξ, and only its gradient evaluated
+// (stochastic::perlin3_stochastic).
+fn nb_perlin3_estimate(p: vec3<f32>, seed: u32, xi: f32) -> f32 {
+    let fl = floor(p);
+    let f = p - fl;
+    let cell = bitcast<vec3<u32>>(vec3<i32>(fl));
+    let t = vec3<f32>(nb_fade(f.x), nb_fade(f.y), nb_fade(f.z));
+    var n = nb_narrowing(xi);
+    var h = seed;
+    var o = vec3<f32>(0.0);
+    for (var a = 0u; a < 3u; a++) {
+        let up = nb_upper(&n, t[a]);
+        h ^= cell[a] * NB_PRIME[a] + (up & NB_PRIME[a]);
+        o[a] = f32(up & 1u);
+    }
+    let d = nb_grad3(h * NB_CORNER_MUL) * (f - o);
+    return d.x + d.y + d.z;
+}
+
+// Octaves, lacunarity and gain of a fractal sum (stochastic::Fractal).
+struct NbFractal {
+    octaves: u32,
+    lacunarity: f32,
+    gain: f32,
+}
+
+// The paper's settings: 10 octaves, lacunarity 2, gain ½ (Fractal::default).
+fn nb_fractal_default() -> NbFractal {
+    return NbFractal(10u, 2.0, 0.5);
+}
+
+// The parameters made safe as the runtime makes them: octaves in 1..=32, lacunarity in
+// [-1024, 1024], gain in [-16, 16].
+fn nb_fractal_sane(f: NbFractal) -> NbFractal {
+    return NbFractal(clamp(f.octaves, 1u, 32u), clamp(f.lacunarity, -1024.0, 1024.0), clamp(f.gain, -16.0, 16.0));
+}
+
+// The seed of octave o (each octave an independent noise).
+fn nb_octave_seed(seed: u32, o: u32) -> u32 {
+    return seed + o * 0x9e3779b9u;
+}
+
+// fBm of 3D Perlin noise: Σ gain^o · perlin3(p · lacunarity^o) (eq. 9; stochastic::fbm3).
+fn nb_fbm3(p: vec3<f32>, fractal: NbFractal, seed: u32) -> f32 {
+    let f = nb_fractal_sane(fractal);
+    var amp = 1.0;
+    var freq = 1.0;
+    var sum = 0.0;
+    for (var o = 0u; o < f.octaves; o++) {
+        sum += amp * nb_perlin3(p * freq, nb_octave_seed(seed, o));
+        amp *= f.gain;
+        freq *= f.lacunarity;
+    }
+    return sum;
+}
+
+// One-sample estimator of nb_fbm3 (Algorithm 2): octave o chosen with probability
+// |gain^o| / Σ|gain^i| by ξ, ξ remapped within the octave's interval, and one Perlin gradient
+// in it — one hash and one dot product whatever the octave count (stochastic::fbm3_stochastic).
+fn nb_fbm3_estimate(p: vec3<f32>, fractal: NbFractal, seed: u32, xi: f32) -> f32 {
+    let f = nb_fractal_sane(fractal);
+    let g = abs(f.gain);
+    var total = 0.0;
+    var a = 1.0;
+    for (var o = 0u; o < f.octaves; o++) {
+        total += a;
+        a *= g;
+    }
+    let goal = min(nb_sanitize_xi(xi) * total, bitcast<f32>(bitcast<u32>(total) - 1u));
+    // The chosen octave is the last whose interval starts at or below the goal.
+    var start = 0.0;
+    var amp = 1.0;
+    var freq = 1.0;
+    var pick = vec4<f32>(0.0, 1.0, 1.0, 0.0); // start, amplitude, frequency, octave
+    for (var o = 0u; o < f.octaves; o++) {
+        if (o == 0u || goal >= start) {
+            pick = vec4<f32>(start, amp, freq, f32(o));
+        }
+        start += amp;
+        amp *= g;
+        freq *= f.lacunarity;
+    }
+    let octave = u32(pick.w);
+    var x = 0.0;
+    if (pick.y > 0.0) {
+        x = clamp((goal - pick.x) / pick.y, 0.0, NB_ONE_BELOW);
+    }
+    let v = total * nb_perlin3_estimate(p * pick.z, nb_octave_seed(seed, octave), x);
+    return select(v, -v, f.gain < 0.0 && (octave & 1u) == 1u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Curl-noise jittering in 2D (noise_runtime::cnj; Bærentzen, Frisvad & Martínez 2023)
+
+// Parameters of the jittered triangular lattice (cnj::Cnj2; RK4 integration only).
+struct NbCnj2 {
+    // Streamline time (the paper's t).
+    t: f32,
+    // Noise cell size in lattice spacings (the paper's s); at least 1e-3.
+    s: f32,
+    seed: u32,
+    // Distance between neighbouring lattice points, world units.
+    spacing: f32,
+    // RK4 steps over [0, t], 1..=64.
+    steps: u32,
+}
+
+// The paper's Perlin-noise parameters (Table 1; Cnj2::PAPER).
+fn nb_cnj2_paper() -> NbCnj2 {
+    return NbCnj2(1.05862, 2.86207, 0u, 1.0, 1u);
+}
+
+// One jittered point found by a query (cnj::Neighbor2).
+struct NbNeighbor2 {
+    point: vec2<f32>,
+    distance: f32,
+    site: vec2<i32>,
+}
+
+// Row spacing of the triangular lattice: √3/2.
+const NB_ROW: f32 = 0.8660254;
+// Amplitude of the 2D field relative to nb_noise2's (cnj::field::NOISE_GAIN).
+const NB_NOISE_GAIN: f32 = 1.4375;
+
+// A lattice gradient in [-1, 1]² (cnj::field's grad2).
+fn nb_cnj_grad2(c: vec2<i32>, seed: u32) -> vec2<f32> {
+    let m = bitcast<vec2<u32>>(c) * NB_PRIME.xy;
+    var h = (seed ^ m.x ^ m.y) * NB_CORNER_MUL;
+    h = (h ^ (h >> 15u)) * 0x2c1b3c6du;
+    return vec2<f32>(f32(h >> 16u), f32(h & 0xffffu)) * (1.0 / 32768.0) - 1.0;
+}
+
+// The gradient (∂n/∂x, ∂n/∂y) of 2D gradient noise with quintic fade (cnj::noise2).
+fn nb_noise2_grad(p: vec2<f32>, seed: u32) -> vec2<f32> {
+    let fl = floor(p);
+    let c = vec2<i32>(fl);
+    let x = p.x - fl.x;
+    let y = p.y - fl.y;
+    let ga = nb_cnj_grad2(c, seed);
+    let gb = nb_cnj_grad2(c + vec2<i32>(1, 0), seed);
+    let gc = nb_cnj_grad2(c + vec2<i32>(0, 1), seed);
+    let gd = nb_cnj_grad2(c + vec2<i32>(1, 1), seed);
+    let va = ga.x * x + ga.y * y;
+    let vb = gb.x * (x - 1.0) + gb.y * y;
+    let vc = gc.x * x + gc.y * (y - 1.0);
+    let vd = gd.x * (x - 1.0) + gd.y * (y - 1.0);
+    let ux = nb_fade(x);
+    let uy = nb_fade(y);
+    let sx = x * (x - 1.0);
+    let sy = y * (y - 1.0);
+    let dx = 30.0 * sx * sx;
+    let dy = 30.0 * sy * sy;
+    let k = va - vb - vc + vd;
+    let nx = ga.x + ux * (gb.x - ga.x) + uy * (gc.x - ga.x) + ux * uy * (ga.x - gb.x - gc.x + gd.x)
+        + dx * (uy * k + (vb - va));
+    let ny = ga.y + ux * (gb.y - ga.y) + uy * (gc.y - ga.y) + ux * uy * (ga.y - gb.y - gc.y + gd.y)
+        + dy * (ux * k + (vc - va));
+    return vec2<f32>(nx, ny);
+}
+
+// The curl-noise velocity V = (∂N(p/s)/∂y, −∂N(p/s)/∂x) (eq. 5; cnj::velocity2).
+fn nb_cnj_velocity2(p: vec2<f32>, s: f32, seed: u32) -> vec2<f32> {
+    let n = nb_noise2_grad(p * (1.0 / s), seed);
+    let inv = NB_NOISE_GAIN / s;
+    return vec2<f32>(n.y * inv, -n.x * inv);
+}
+
+// A site's position on the lattice (spacing 1): odd rows shifted by half a spacing.
+fn nb_cnj2_site_position(site: vec2<i32>) -> vec2<f32> {
+    return vec2<f32>(f32(site.x) + 0.5 * f32(site.y & 1), f32(site.y) * NB_ROW);
+}
+
+// The jittered point of a site, world units: the site moved along the flow for time t by RK4
+// (direct CNJ, eq. 4; Cnj2::point).
+fn nb_cnj2_point(c: NbCnj2, site: vec2<i32>) -> vec2<f32> {
+    let s = max(c.s, 1e-3);
+    let steps = clamp(c.steps, 1u, 64u);
+    let p0 = nb_cnj2_site_position(site);
+    let h = c.t / f32(steps);
+    var d = vec2<f32>(0.0);
+    for (var i = 0u; i < steps; i++) {
+        let k1 = nb_cnj_velocity2(p0 + d, s, c.seed);
+        let k2 = nb_cnj_velocity2(p0 + d + 0.5 * h * k1, s, c.seed);
+        let k3 = nb_cnj_velocity2(p0 + d + 0.5 * h * k2, s, c.seed);
+        let k4 = nb_cnj_velocity2(p0 + d + h * k3, s, c.seed);
+        d += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    return (p0 + d) * c.spacing;
+}
+
+// The lattice site nearest to a position in lattice units (Cnj2::nearest_site).
+fn nb_cnj2_nearest_site(q: vec2<f32>) -> vec2<i32> {
+    let j0 = i32(round(q.y / NB_ROW));
+    var best = vec2<i32>(0);
+    var best_d = 3.4e38;
+    for (var j = j0 - 1; j <= j0 + 1; j++) {
+        let par = 0.5 * f32(j & 1);
+        let i = i32(round(q.x - par));
+        let e = vec2<f32>(f32(i) + par, f32(j) * NB_ROW) - q;
+        let d = dot(e, e);
+        if (d < best_d) {
+            best = vec2<i32>(i, j);
+            best_d = d;
+        }
+    }
+    return best;
+}
+
+// The nearest jittered point to x (world units): point, distance and site (Cnj2::closest).
+// Searches the 19 sites within two hex rings of the nearest lattice site, which hold the
+// nearest point whenever displacements stay below about 1.2 spacings (the paper's parameters
+// give 1.15). Positions are f32 here, so queries should stay within a few thousand spacings of
+// the origin (see noise_runtime::shaders).
+fn nb_cnj2_closest(c: NbCnj2, x: vec2<f32>) -> NbNeighbor2 {
+    let sp = select(1.0, c.spacing, c.spacing > 0.0);
+    var cfg = c;
+    cfg.spacing = sp;
+    let center = nb_cnj2_nearest_site(x / sp);
+    var best = NbNeighbor2(vec2<f32>(0.0), 3.4e38, vec2<i32>(0));
+    var best_d = 3.4e38;
+    let x0 = 2 * center.x + (center.y & 1);
+    for (var dj = -2; dj <= 2; dj++) {
+        let jr = center.y + dj;
+        let half = 4 - abs(dj);
+        let par = jr & 1;
+        let lo = (x0 - half - par + 1) >> 1u;
+        let hi = (x0 + half - par) >> 1u;
+        for (var ii = lo; ii <= hi; ii++) {
+            let site = vec2<i32>(ii, jr);
+            let p = nb_cnj2_point(cfg, site);
+            let e = p - x;
+            let d = dot(e, e);
+            if (d < best_d) {
+                best_d = d;
+                best = NbNeighbor2(p, sqrt(d), site);
+            }
+        }
+    }
+    return best;
+}
