@@ -64,6 +64,7 @@ pub struct Bake {
     cache_dir: Option<PathBuf>,
     krate: String,
     cargo_output: bool,
+    ktx2_dir: Option<PathBuf>,
 }
 
 impl Bake {
@@ -76,6 +77,7 @@ impl Bake {
             cache_dir: None,
             krate: "::noisebake".into(),
             cargo_output: true,
+            ktx2_dir: None,
         }
     }
 
@@ -101,6 +103,15 @@ impl Bake {
     /// Whether to print `cargo:` lines (on by default; off for use outside build scripts).
     pub fn cargo_output(mut self, on: bool) -> Self {
         self.cargo_output = on;
+        self
+    }
+
+    /// Also writes every texture as `dir/<name>.ktx2` (a KTX 2.0 array texture, see
+    /// [`export::ktx2`](crate::export::ktx2)), for a game's asset folder: relative paths are
+    /// relative to the package root in a build script. Files are rewritten only when their
+    /// bytes change.
+    pub fn ktx2_dir(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.ktx2_dir = Some(dir.into());
         self
     }
 
@@ -195,6 +206,18 @@ impl Bake {
                 }
                 e
             };
+            if let Some(dir) = &self.ktx2_dir {
+                std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+                    action: "creating",
+                    path: dir.clone(),
+                    source,
+                })?;
+                let file = dir.join(format!("{}.ktx2", spec.name));
+                write_if_changed(
+                    &file,
+                    &crate::export::ktx2::to_ktx2(&entry.texture, Some(spec)),
+                )?;
+            }
             let bin = data_dir.join(format!("{}.bin", spec.name));
             write_if_changed(&bin, &entry.texture.data)?;
             code += &codegen::item(spec, "pub ", &bin.display().to_string(), 0, &self.krate);

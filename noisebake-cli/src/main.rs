@@ -1,14 +1,14 @@
 //! `noisebake`: bake spec files, generate single textures, analyse masks.
 //!
 //! ```text
-//! noisebake bake SPEC.toml --out DIR [--png]
-//! noisebake gen --kind stbn --dims 64x64x16 [--seed 7 --format u16 --KEY VALUE ...] --out FILE.{npy,png,bin}
+//! noisebake bake SPEC.toml --out DIR [--png] [--ktx2]
+//! noisebake gen --kind stbn --dims 64x64x16 [--seed 7 --format u16 --KEY VALUE ...] --out FILE.{npy,ktx2,png,bin}
 //! noisebake analyze FILE.npy
 //! ```
 
 use build_assets::cache::{Locator, Source};
 use build_assets::export::png;
-use build_assets::export::{npy, write_atomic};
+use build_assets::export::{ktx2, npy, write_atomic};
 use build_assets::spec::{self, Span, Spanned, Table, TextureSpec, Value};
 use build_assets::{Texture, generate};
 use clap::{Parser, Subcommand};
@@ -31,7 +31,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Bake every texture of a spec file through the cache (the same one build scripts and the
-    /// macro use) into `DIR/<name>.npy` (and PNG slices).
+    /// macro use) into `DIR/<name>.npy` (and PNG slices, and KTX2 array textures).
     Bake {
         /// The spec file (`[[texture]]` tables).
         spec: PathBuf,
@@ -41,13 +41,18 @@ enum Command {
         /// Also write each 2D slice as a PNG.
         #[arg(long)]
         png: bool,
+        /// Also write `DIR/<name>.ktx2`: a KTX 2.0 array texture (one layer per time slice) to
+        /// load on a GPU.
+        #[arg(long)]
+        ktx2: bool,
         /// The cache directory (default: NOISEBAKE_CACHE_DIR, the spec's cache_dir, else the
         /// workspace's target/noisebake-cache).
         #[arg(long)]
         cache_dir: Option<PathBuf>,
     },
     /// Generate one texture from flags: the spec keys as `--key value` (values in TOML syntax;
-    /// dims also as WxHxT), written as .npy, .png (slices) or .bin (raw little-endian).
+    /// dims also as WxHxT), written as .npy, .ktx2 (GPU array texture), .png (slices) or .bin
+    /// (raw little-endian).
     #[command(allow_hyphen_values = true)]
     Gen {
         /// `--kind K --dims WxH[xT…] [--seed N] [--format F] [--KEY VALUE…] --out FILE`
@@ -114,8 +119,9 @@ fn main() -> ExitCode {
             spec,
             out,
             png,
+            ktx2,
             cache_dir,
-        } => bake(&spec, &out, png, cache_dir),
+        } => bake(&spec, &out, png, ktx2, cache_dir),
         Command::Gen { args } => gen_cmd(&args),
         Command::Analyze {
             file,
@@ -192,7 +198,12 @@ fn with_progress<T>(spec: &TextureSpec, run: impl FnOnce(&mut dyn FnMut(u64, u64
     t
 }
 
-fn write_outputs(t: &Texture, out: &Path, with_png: bool) -> Result<(), String> {
+fn write_outputs(
+    t: &Texture,
+    spec: Option<&TextureSpec>,
+    out: &Path,
+    with_png: bool,
+) -> Result<(), String> {
     let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     match ext {
         "npy" => {
@@ -204,10 +215,11 @@ fn write_outputs(t: &Texture, out: &Path, with_png: bool) -> Result<(), String> 
             let stem = out.file_stem().and_then(|s| s.to_str()).unwrap_or(&t.name);
             png::write_slices(t, dir, stem)?;
         }
-        "ktx2" => return Err("KTX2 export is not available yet; write .npy, .png or .bin".into()),
+        "ktx2" => write_atomic(out, &ktx2::to_ktx2(t, spec))
+            .map_err(|e| format!("{}: {e}", out.display()))?,
         other => {
             return Err(format!(
-                "unknown output extension `.{other}`; use .npy, .png or .bin"
+                "unknown output extension `.{other}`; use .npy, .ktx2, .png or .bin"
             ));
         }
     }
@@ -222,6 +234,7 @@ fn bake(
     spec_path: &Path,
     out: &Path,
     with_png: bool,
+    with_ktx2: bool,
     cache_dir: Option<PathBuf>,
 ) -> Result<(), String> {
     let text =
@@ -246,7 +259,10 @@ fn bake(
             eprintln!("warning: {w}");
         }
         let t = entry.texture;
-        write_outputs(&t, &out.join(format!("{}.npy", s.name)), with_png)?;
+        write_outputs(&t, Some(s), &out.join(format!("{}.npy", s.name)), with_png)?;
+        if with_ktx2 {
+            write_outputs(&t, Some(s), &out.join(format!("{}.ktx2", s.name)), false)?;
+        }
         let how = match entry.source {
             Source::Hit => "cached".to_string(),
             Source::Generated => format!("{:.3} s", entry.seconds),
@@ -306,7 +322,7 @@ fn parse_value(raw: &str) -> Value {
 
 fn gen_cmd(args: &[String]) -> Result<(), String> {
     let (table, out) = flags_to_table(args)?;
-    let out = out.ok_or("gen needs --out FILE.{npy,png,bin}")?;
+    let out = out.ok_or("gen needs --out FILE.{npy,ktx2,png,bin}")?;
     let stem = out
         .file_stem()
         .and_then(|s| s.to_str())
@@ -332,7 +348,7 @@ fn gen_cmd(args: &[String]) -> Result<(), String> {
         s.canonical(),
         start.elapsed().as_secs_f64()
     );
-    write_outputs(&t, &out, false)
+    write_outputs(&t, Some(&s), &out, false)
 }
 
 /// The output format a path asks for, or why it cannot be written.
@@ -352,9 +368,9 @@ fn output_kind(out: &Path, s: &TextureSpec) -> Result<&'static str, String> {
             s.format
         )),
         "png" => Ok("png"),
-        "ktx2" => Err("KTX2 export is not available yet; write .npy, .png or .bin".into()),
+        "ktx2" => Ok("ktx2"),
         other => Err(format!(
-            "unknown output extension `.{other}`; use .npy, .png or .bin"
+            "unknown output extension `.{other}`; use .npy, .ktx2, .png or .bin"
         )),
     }
 }
