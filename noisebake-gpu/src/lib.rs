@@ -10,6 +10,8 @@
 //! software Vulkan device, which is what CI uses.
 
 use noisebake::{GpuFormat, GpuTexture};
+/// The wgpu this crate runs on, for callers that hold its textures.
+pub use wgpu;
 use std::time::Duration;
 
 /// A headless wgpu device and its queue.
@@ -96,7 +98,11 @@ impl Gpu {
                 )
             }
             Err(e) => {
-                eprintln!(
+                // Straight to the stderr handle: the test harness captures `eprintln!` of
+                // passing tests, and a skip must be seen.
+                use std::io::Write;
+                let _ = writeln!(
+                    std::io::stderr(),
                     "SKIPPED: {e}. The GPU tests need a Vulkan device; on a machine without one, \
                      `apt-get install mesa-vulkan-drivers libvulkan1` gives a software one."
                 );

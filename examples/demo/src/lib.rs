@@ -15,6 +15,11 @@ pub mod cnj_panel;
 pub mod noises;
 mod output;
 
+pub use output::png as save_png;
+
+/// The transparency and dithering scenes in WGSL (`src/scenes.wgsl`), for the GPU example.
+pub const GPU_SCENES: &str = include_str!("scenes.wgsl");
+
 use apps::{App, Dither, Occlusion, Transparency, Volume};
 use noises::Noise;
 use rayon::prelude::*;
@@ -74,8 +79,9 @@ fn rmse(a: &[f32], b: &[f32]) -> f64 {
     (s / a.len().max(1) as f64).sqrt()
 }
 
-/// Gaussian blur (σ = 1 px, clamped edges) of an image with `c` channels.
-fn blur(img: &[f32], [w, h]: [usize; 2], c: usize) -> Vec<f32> {
+/// Gaussian blur (σ = 1 px, clamped edges) of an image with `c` channels: the spatial filter
+/// the demo's errors are measured after.
+pub fn blur(img: &[f32], [w, h]: [usize; 2], c: usize) -> Vec<f32> {
     let taps: Vec<f32> = (-3i32..=3).map(|d| (-(d * d) as f32 / 2.0).exp()).collect();
     let norm: f32 = taps.iter().sum();
     let pass = |src: &[f32], dx: usize, dy: usize| -> Vec<f32> {
@@ -115,8 +121,64 @@ pub struct AppResult {
     pub reference_seconds: f64,
 }
 
-fn render_app(app: &dyn App, cfg: &Config) -> AppResult {
+/// The demo's metrics of one application and noise type from its frames: `render(f, frame)`
+/// fills frame `f` (`cfg.size` pixels × the app's channels). Returns the metrics (with
+/// `seconds` 0) and the first frame, the Monte Carlo mean after `cfg.mc_frames` frames and the
+/// final EMA. `ref_blur` is the reference after [`blur`]. The CPU demo and the GPU example
+/// both measure through this, so their errors are the same numbers of the same images.
+pub fn evaluate(
+    app: &dyn App,
+    cfg: &Config,
+    noise: Noise,
+    reference: &[f32],
+    ref_blur: &[f32],
+    render: &mut dyn FnMut(u32, &mut [f32]),
+) -> (Metrics, [Vec<f32>; 3]) {
     let [w, h] = cfg.size;
+    let c = app.channels();
+    let mut sum = vec![0.0f64; w * h * c];
+    let mut ema = vec![0.0f32; w * h * c];
+    let (mut mc, mut em) = (Vec::new(), Vec::new());
+    let (mut first, mut mc_img) = (Vec::new(), Vec::new());
+    let mut frame = vec![0.0f32; w * h * c];
+    for f in 0..cfg.frames {
+        render(f as u32, &mut frame);
+        for (s, v) in sum.iter_mut().zip(&frame) {
+            *s += *v as f64;
+        }
+        if f == 0 {
+            ema.copy_from_slice(&frame);
+            first = frame.clone();
+        } else {
+            for (e, v) in ema.iter_mut().zip(&frame) {
+                *e += EMA_ALPHA as f32 * (v - *e);
+            }
+        }
+        let mean: Vec<f32> = sum.iter().map(|s| (s / (f + 1) as f64) as f32).collect();
+        mc.push(rmse(&mean, reference));
+        em.push(rmse(&ema, reference));
+        if f + 1 == cfg.mc_frames.min(cfg.frames) {
+            mc_img = mean;
+        }
+    }
+    let filtered_1 = rmse(&blur(&first, cfg.size, c), ref_blur);
+    let denoised = rmse(&blur(&ema, cfg.size, c), ref_blur);
+    (
+        Metrics {
+            app: app.name(),
+            noise,
+            filtered_1,
+            mc,
+            ema: em,
+            denoised,
+            seconds: 0.0,
+        },
+        [first, mc_img, ema],
+    )
+}
+
+fn render_app(app: &dyn App, cfg: &Config) -> AppResult {
+    let [w, _] = cfg.size;
     let c = app.channels();
     let t0 = Instant::now();
     let reference = app.reference();
@@ -126,53 +188,19 @@ fn render_app(app: &dyn App, cfg: &Config) -> AppResult {
         .iter()
         .map(|&noise| {
             let start = Instant::now();
-            let mut sum = vec![0.0f64; w * h * c];
-            let mut ema = vec![0.0f32; w * h * c];
-            let (mut mc, mut em) = (Vec::new(), Vec::new());
-            let (mut first, mut mc_img) = (Vec::new(), Vec::new());
-            let mut frame = vec![0.0f32; w * h * c];
-            for f in 0..cfg.frames {
+            let mut frames = |f: u32, frame: &mut [f32]| {
                 frame
                     .par_chunks_mut(w * c)
                     .enumerate()
                     .for_each(|(y, row)| {
                         for x in 0..w {
-                            app.pixel(noise, x, y, f as u32, &mut row[x * c..(x + 1) * c]);
+                            app.pixel(noise, x, y, f, &mut row[x * c..(x + 1) * c]);
                         }
                     });
-                for (s, v) in sum.iter_mut().zip(&frame) {
-                    *s += *v as f64;
-                }
-                if f == 0 {
-                    ema.copy_from_slice(&frame);
-                    first = frame.clone();
-                } else {
-                    for (e, v) in ema.iter_mut().zip(&frame) {
-                        *e += EMA_ALPHA as f32 * (v - *e);
-                    }
-                }
-                let mean: Vec<f32> = sum.iter().map(|s| (s / (f + 1) as f64) as f32).collect();
-                mc.push(rmse(&mean, &reference));
-                em.push(rmse(&ema, &reference));
-                if f + 1 == cfg.mc_frames.min(cfg.frames) {
-                    mc_img = mean;
-                }
-            }
-            let seconds = start.elapsed().as_secs_f64();
-            let filtered_1 = rmse(&blur(&first, cfg.size, c), &ref_blur);
-            let denoised = rmse(&blur(&ema, cfg.size, c), &ref_blur);
-            (
-                Metrics {
-                    app: app.name(),
-                    noise,
-                    filtered_1,
-                    mc,
-                    ema: em,
-                    denoised,
-                    seconds,
-                },
-                [first, mc_img, ema],
-            )
+            };
+            let (mut m, images) = evaluate(app, cfg, noise, &reference, &ref_blur, &mut frames);
+            m.seconds = start.elapsed().as_secs_f64();
+            (m, images)
         })
         .collect();
     AppResult {

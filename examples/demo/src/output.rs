@@ -6,7 +6,8 @@ use noisebake_cli::export::plot::{Labels, PALETTE, Series, line_plot};
 use std::fmt::Write as _;
 use std::path::Path;
 
-fn png(path: &Path, img: &[f32], [w, h]: [usize; 2], c: usize) -> Result<(), String> {
+/// Writes an image (values in [0, 1], `c` = 1 or 3 channels) as an 8-bit PNG.
+pub fn png(path: &Path, img: &[f32], [w, h]: [usize; 2], c: usize) -> Result<(), String> {
     let to8 = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
     let mut bytes = Vec::new();
     let enc = if c == 3 {
