@@ -20,7 +20,6 @@ use noisebake_gpu::{Binding, Gpu, bytes_of, floats};
 use std::path::PathBuf;
 use std::time::Duration;
 
-
 const NOISES: [(Noise, u32); 4] = [
     (Noise::Stbn, 0),
     (Noise::Fast, 1),
@@ -29,7 +28,10 @@ const NOISES: [(Noise, u32); 4] = [
 ];
 
 /// Uploads a scalar u8 mask from its runtime view, as a game would.
-fn upload<const W: u32, const H: u32, const D: u32>(gpu: &Gpu, m: &Mask3<u8, W, H, D>) -> noisebake_gpu::wgpu::Texture {
+fn upload<const W: u32, const H: u32, const D: u32>(
+    gpu: &Gpu,
+    m: &Mask3<u8, W, H, D>,
+) -> noisebake_gpu::wgpu::Texture {
     let bytes = m.gpu_bytes().expect("scalar masks upload their own bytes");
     gpu.upload_mask(m.gpu_texture(), bytes)
 }
@@ -76,7 +78,11 @@ fn main() {
             let (outputs, per_dispatch): (Vec<Vec<u8>>, Duration) = gpu
                 .run_timed(
                     GPU_SCENES,
-                    [(w as u32).div_ceil(8), (h as u32).div_ceil(8), cfg.frames as u32],
+                    [
+                        (w as u32).div_ceil(8),
+                        (h as u32).div_ceil(8),
+                        cfg.frames as u32,
+                    ],
                     &[
                         Binding::Uniform(&params),
                         Binding::Output(frame_len * cfg.frames * 4),

@@ -93,6 +93,15 @@
 //! prints nothing. The macro forces no second compile: Cargo shows its message again on fresh
 //! builds until the crate next compiles.
 //!
+//! ## On the GPU
+//!
+//! A baked mask describes itself as a GPU texture ([`Mask3::gpu_texture`]: a 2D array, one
+//! layer per time slice) and gives the bytes to upload ([`Mask3::gpu_bytes`],
+//! [`Mask3::write_gpu_bytes`]); `build_assets::Bake::ktx2_dir` and the CLI's `--ktx2` write the
+//! same texture as KTX2 files for an asset folder. [`shaders::WGSL`] is the runtime's mask
+//! lookup, grids, hashes, CNJ and Perlin/fBm functions in WGSL, matching the CPU (see
+//! [`shaders`] for how exactly).
+//!
 //! # Spec keys
 //!
 //! Every texture takes `name` (a Rust identifier; in the macro, the item name), `kind`, `dims`

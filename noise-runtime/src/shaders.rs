@@ -14,15 +14,25 @@
 //! | `nb_perlin3`, `nb_fbm3`, `nb_perlin3_estimate`, `nb_fbm3_estimate` | [`stochastic::perlin3`](crate::stochastic::perlin3) … | within tolerances (below) |
 //! | `nb_cnj2_closest` | [`Cnj2::closest`](crate::cnj::Cnj2::closest) | same site; point within tolerance |
 //!
-//! The floating-point functions cannot agree bit for bit: WGSL lets an implementation fuse
+//! The floating-point functions cannot promise the same bits: WGSL lets an implementation fuse
 //! `a * b + c` into one rounding (GPUs do), and has no `f64`, which the CPU's CNJ queries use.
-//! The tolerances, derived in the file's comments and checked on a Vulkan device by the
-//! `noisebake-gpu` tests, are: Perlin and fBm values within `2^-16` (a few roundings of values
-//! of magnitude ≤ 4 per step); the estimators the same, except that a decision whose weight
-//! lands within one rounding of ξ's cut may go the other way (a different, equally valid
-//! corner or octave) — measured at about one input in 10⁵. Coordinates must lie within
-//! `|p| < 2^22` (the runtime's fast split range; beyond it the GPU's `floor` and `i32`
-//! conversion no longer match the CPU's exact split).
+//! The `noisebake-gpu` tests hold them, on a Vulkan device, to these tolerances:
+//!
+//! - `nb_perlin3` within `2^-16` of [`perlin3`](crate::stochastic::perlin3) (values of
+//!   magnitude ≤ 2 through seven lerps and the fades, each of which may round once more or
+//!   once less when fused: a few ulps of 2, far below the bound); `nb_fbm3` within
+//!   `Σ|gain^o| · 2^-16`.
+//! - The estimators bit for bit, except where a decision flips because a fade weight or the
+//!   remapped ξ landed within one rounding of its cut: the GPU then evaluated another, equally
+//!   valid corner or octave. At most one input in 10⁴ may do so.
+//! - `nb_cnj2_closest` within `2^-12` spacings of [`Cnj2::closest`](crate::cnj::Cnj2::closest)'s
+//!   point for queries within 256 spacings of the origin (f32 positions through the flow), and
+//!   the same site unless the two nearest points are within twice that of a tie. Far from the
+//!   origin the f32 positions lose precision in proportion to |x|: offset coordinates there.
+//!
+//! On Mesa's lavapipe, which does not fuse, every one of them matched bit for bit. Gradient
+//! noise coordinates must lie within `|p| < 2^22` (the runtime's fast split range; beyond it the
+//! GPU's `floor` and `i32` conversion no longer match the CPU's exact split).
 //!
 //! # Using it
 //!

@@ -10,9 +10,9 @@
 //! software Vulkan device, which is what CI uses.
 
 use noisebake::{GpuFormat, GpuTexture};
+use std::time::Duration;
 /// The wgpu this crate runs on, for callers that hold its textures.
 pub use wgpu;
-use std::time::Duration;
 
 /// A headless wgpu device and its queue.
 pub struct Gpu {

@@ -19,7 +19,12 @@ fn gpu_scenes_match_the_cpu_demo() {
         (&Transparency { size: [w, h] }, 0),
         (&Dither { size: [w, h] }, 1),
     ];
-    let noises = [(Noise::Stbn, 0u32), (Noise::Fast, 1), (Noise::Ign, 2), (Noise::R2, 3)];
+    let noises = [
+        (Noise::Stbn, 0u32),
+        (Noise::Fast, 1),
+        (Noise::Ign, 2),
+        (Noise::R2, 3),
+    ];
     for (app, app_id) in apps {
         let c = app.channels();
         for (noise, noise_id) in noises {
@@ -64,7 +69,12 @@ fn gpu_scenes_match_the_cpu_demo() {
                     }
                 }
             }
-            assert!(flips <= 2, "{} {}: {flips} pixels chose the other layer", app.name(), noise.name());
+            assert!(
+                flips <= 2,
+                "{} {}: {flips} pixels chose the other layer",
+                app.name(),
+                noise.name()
+            );
         }
     }
 }
