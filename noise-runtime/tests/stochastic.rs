@@ -83,6 +83,26 @@ fn pairs() -> Vec<Pair> {
             |p| fbm3(p, Fractal::new(5, 2.0, -0.5), 3),
             |p, x| fbm3_stochastic(p, Fractal::new(5, 2.0, -0.5), 3, x),
         ),
+        // Exact top octaves and one sampled octave of the rest (the renderer's variant), with
+        // one, two and all-but-one exact octaves, and a general lacunarity and negative gain.
+        (
+            "fbm3 tail (1 exact)",
+            |p| fbm3(p, Fractal::new(6, 2.0, 0.5), 3),
+            |p, x| fbm3_tail_stochastic(p, Fractal::new(6, 2.0, 0.5), 1, 3, x),
+        ),
+        (
+            "fbm3 tail (2 exact, gain -0.5)",
+            |p| fbm3(p, Fractal::new(6, 2.0, -0.5), 3),
+            |p, x| fbm3_tail_stochastic(p, Fractal::new(6, 2.0, -0.5), 2, 3, x),
+        ),
+        (
+            "fbm3 tail (4 exact, lacunarity 1.93, gain 0.6)",
+            |p| fbm3(p, Fractal::new(5, 1.93, 0.6), 3),
+            |p, x| fbm3_tail_stochastic(p, Fractal::new(5, 1.93, 0.6), 4, 3, x),
+        ),
+        ("fbm_sparse_conv3 tail (2 exact)", fbm_sparse, |p, x| {
+            fbm_sparse_conv3_tail_stochastic(p, FBM_SPARSE, 2, 6, 3, x)
+        }),
         ("sparse_conv3", sparse, |p, x| {
             sparse_conv3_stochastic(p, 10, 3, x)
         }),

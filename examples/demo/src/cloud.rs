@@ -1,26 +1,42 @@
-//! Render-level check of stochastic noise (Fajardo & Pharr §7.2, Tables 2–3): a procedural cloud
-//! of fBm density, single scattering from a light above, rendered with ratio tracking — once
-//! with deterministic fBm and once with the one-sample fBm estimator — at 16 and 64 samples per
-//! pixel. Both are unbiased: the density enters every estimate linearly (the scattering
-//! coefficient, and each factor `1 − σ̂/σ̄` of ratio tracking uses its own independent ξ), which
-//! is exactly where the paper says stochastic noise is safe. Reports time and RMSE against a
-//! 1024-spp reference for each (single thread).
+//! Stochastic noise where it is meant to pay (Fajardo & Pharr §7.2, Tables 2–3): inside Monte
+//! Carlo renderers that already draw many random numbers per pixel, with the noise evaluated
+//! deterministically or by one-sample estimators, compared at equal time
+//! ([`equal_time`](crate::equal_time)).
+//!
+//! Three scenes:
+//! - **`cloud`** (the demo's panel): a 64×64 cloud of 8-octave Perlin fBm density, single
+//!   scattering from a light above, ratio tracking with a fixed majorant.
+//! - **`paper-cloud-*`**: the paper's Table 3 setting at a size a CPU renders in seconds:
+//!   volumetric path tracing with delta tracking and null scattering (weighted, so any majorant
+//!   is unbiased), multiple scattering, 10 octaves of Perlin or sparse-convolution fBm, with a
+//!   strict majorant (a bound on the deterministic density) and an optimised one (half of it,
+//!   which the null-scattering weights tolerate).
+//! - **`material`** ([`material`](crate::material)): a plane with a procedural fBm albedo seen in
+//!   perspective, one sample per pixel and frame (ξ from the baked STBN), accumulated over frames.
+//!
+//! Density variants ([`Variant`]): the full deterministic fBm; the one-sample estimator of the
+//! whole sum (Algorithm 2); the *tail* estimator (the largest octaves exact, one octave of the
+//! rest sampled: `fbm3_tail_stochastic`); and band-limited forms of both, whose octave count
+//! stops at the pixel footprint (a biased model of the scene, measured against the full sum).
+//! Every estimator enters the renderers linearly (extinction, ratio-tracking factors,
+//! null-scattering weights, albedo), so every unbiased variant converges to the same image.
 
+use crate::equal_time::{self, Row};
 use build_assets::export::png::write_slices;
 use build_assets::spec::Format;
 use build_assets::texture::Texture;
-use noisebake::stochastic::{Fractal, fbm3, fbm3_stochastic};
-use std::time::Instant;
-
-const SIZE: usize = 64;
-const OCTAVES: Fractal = Fractal::new(8, 2.0, 0.5);
-/// Majorant of ratio tracking (density units per unit length).
-const MAJORANT: f32 = 12.0;
+use noisebake::stochastic::{
+    Fractal, fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_tail_stochastic,
+    fbm3, fbm3_stochastic, fbm3_tail_stochastic,
+};
+use rayon::prelude::*;
+use std::path::Path;
 
 /// Per-pixel random numbers (SplitMix64).
-struct Rng(u64);
+pub struct Rng(pub u64);
 impl Rng {
-    fn next(&mut self) -> f32 {
+    /// A uniform number in `[0, 1)`.
+    pub fn next(&mut self) -> f32 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -29,81 +45,138 @@ impl Rng {
     }
 }
 
-/// Density at `p` in the unit cube: a ball modulated by fBm. `xi` selects the estimator.
-fn density(p: [f32; 3], xi: Option<f32>) -> f32 {
-    let r2 = (p[0] - 0.5).powi(2) + (p[1] - 0.5).powi(2) + (p[2] - 0.5).powi(2);
-    let shape = (1.0 - 4.0 * r2).max(0.0);
-    if shape == 0.0 {
-        return 0.0;
-    }
-    let q = [p[0] * 3.0, p[1] * 3.0, p[2] * 3.0];
-    let n = match xi {
-        None => fbm3(q, OCTAVES, 3),
-        Some(x) => fbm3_stochastic(q, OCTAVES, 3, x),
-    };
-    // Linear in the noise (no clamp), so the stochastic form stays unbiased.
-    6.0 * shape * (1.0 + n)
+/// How a scene evaluates its noise.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Variant {
+    /// The full fBm, every octave.
+    Deterministic,
+    /// The fBm up to the pixel footprint's octave (biased: sub-pixel octaves dropped).
+    BandLimited,
+    /// The one-sample estimator of the whole sum (Algorithm 2).
+    Stochastic,
+    /// The first `k` octaves exact, one octave of the rest sampled.
+    Tail(u32),
+    /// [`Variant::Tail`] up to the pixel footprint's octave.
+    TailBandLimited(u32),
 }
 
-/// Ratio-tracking transmittance from `o` along `d` over length `len`.
-fn transmittance(o: [f32; 3], d: [f32; 3], len: f32, rng: &mut Rng, stochastic: bool) -> f32 {
-    let mut t = 0.0;
-    let mut tr = 1.0;
-    loop {
-        t -= (1.0 - rng.next()).ln() / MAJORANT;
-        if t >= len {
-            return tr;
+impl Variant {
+    /// The name in tables and JSON.
+    pub fn name(self) -> String {
+        match self {
+            Variant::Deterministic => "deterministic".into(),
+            Variant::BandLimited => "deterministic band-limited".into(),
+            Variant::Stochastic => "stochastic".into(),
+            Variant::Tail(k) => format!("stochastic tail ({k} exact)"),
+            Variant::TailBandLimited(k) => format!("tail ({k} exact) band-limited"),
         }
-        let p = [o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]];
-        let xi = stochastic.then(|| rng.next());
-        tr *= 1.0 - density(p, xi) / MAJORANT;
+    }
+
+    fn band_limited(self) -> bool {
+        matches!(self, Variant::BandLimited | Variant::TailBandLimited(_))
     }
 }
 
-/// One single-scattering sample of the ray through pixel `(x, y)` (looking along +z, light
-/// from −y): a uniform point along the ray, σ̂_s there, transmittance to the eye and the light.
-fn sample(x: usize, y: usize, rng: &mut Rng, stochastic: bool) -> f32 {
-    let u = (x as f32 + rng.next()) / SIZE as f32;
-    let v = (y as f32 + rng.next()) / SIZE as f32;
-    let t = rng.next();
-    let p = [u, v, t];
-    let xi = stochastic.then(|| rng.next());
-    let sigma = density(p, xi);
-    if sigma == 0.0 {
-        return 0.0;
+/// The noise summed into fBm.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Basis {
+    /// Improved Perlin noise.
+    Perlin,
+    /// Sparse convolution noise with this many impulses per cell.
+    Sparse(u32),
+}
+
+/// The octaves whose lattice cell is at least the pixel footprint `footprint` (in noise
+/// units): the finer ones vary within a pixel, so the pixel filter averages them away and
+/// evaluating them buys variance and time, not detail.
+pub fn footprint_octaves(f: Fractal, footprint: f32) -> u32 {
+    let visible = (1.0 / footprint.max(1e-9)).log2().floor() as i64 + 1;
+    visible.clamp(1, f.octaves as i64) as u32
+}
+
+/// One evaluation of `basis` fBm at `q` as `variant` asks; `footprint` in noise units; `xi`
+/// gives the estimator's number (called once, only by the sampling variants).
+pub fn fbm(
+    basis: Basis,
+    variant: Variant,
+    q: [f32; 3],
+    f: Fractal,
+    footprint: f32,
+    seed: u32,
+    xi: &mut dyn FnMut() -> f32,
+) -> f32 {
+    let f = if variant.band_limited() {
+        Fractal::new(footprint_octaves(f, footprint), f.lacunarity, f.gain)
+    } else {
+        f
+    };
+    match (variant, basis) {
+        (Variant::Deterministic | Variant::BandLimited, Basis::Perlin) => fbm3(q, f, seed),
+        (Variant::Deterministic | Variant::BandLimited, Basis::Sparse(n)) => {
+            fbm_sparse_conv3(q, f, n, seed)
+        }
+        (Variant::Stochastic, Basis::Perlin) => fbm3_stochastic(q, f, seed, xi()),
+        (Variant::Stochastic, Basis::Sparse(n)) => {
+            fbm_sparse_conv3_stochastic(q, f, n, seed, xi())
+        }
+        (Variant::Tail(k) | Variant::TailBandLimited(k), Basis::Perlin) => {
+            fbm3_tail_stochastic(q, f, k, seed, xi())
+        }
+        (Variant::Tail(k) | Variant::TailBandLimited(k), Basis::Sparse(n)) => {
+            fbm_sparse_conv3_tail_stochastic(q, f, k, n, seed, xi())
+        }
     }
-    let view = transmittance([u, v, 0.0], [0.0, 0.0, 1.0], t, rng, stochastic);
-    let light = transmittance(p, [0.0, -1.0, 0.0], v, rng, stochastic);
-    0.8 * sigma * view * light
 }
 
-fn render(spp: usize, stochastic: bool, seed: u64) -> (Vec<f32>, f64) {
-    let start = Instant::now();
-    let img = (0..SIZE * SIZE)
-        .map(|i| {
-            let mut rng = Rng(seed ^ (i as u64).wrapping_mul(0x2545_f491_4f6c_dd1d));
-            (0..spp)
-                .map(|_| sample(i % SIZE, i / SIZE, &mut rng, stochastic))
-                .sum::<f32>()
-                / spp as f32
-        })
-        .collect();
-    (img, start.elapsed().as_secs_f64())
+/// A scene rendered one Monte Carlo sample at a time.
+pub trait Scene: Sync {
+    /// Name in tables and JSON.
+    fn name(&self) -> String;
+    /// Image side in pixels.
+    fn size(&self) -> usize;
+    /// One sample of pixel `(x, y)`; sample index `s` (for scenes that take ξ from a mask).
+    fn sample(&self, x: usize, y: usize, s: usize, rng: &mut Rng, v: Variant) -> f32;
 }
 
-fn rmse(a: &[f32], b: &[f32]) -> f64 {
+/// The image of `scene` at `spp` samples per pixel, on one thread.
+pub fn render(scene: &dyn Scene, v: Variant, spp: usize, seed: u64) -> Vec<f32> {
+    let n = scene.size();
+    (0..n * n).map(|i| pixel(scene, v, spp, seed, i)).collect()
+}
+
+fn pixel(scene: &dyn Scene, v: Variant, spp: usize, seed: u64, i: usize) -> f32 {
+    let n = scene.size();
+    let mut rng = Rng(seed ^ (i as u64).wrapping_mul(0x2545_f491_4f6c_dd1d));
+    (0..spp)
+        .map(|s| scene.sample(i % n, i / n, s, &mut rng, v))
+        .sum::<f32>()
+        / spp as f32
+}
+
+/// The reference: the deterministic variant at `spp`, on every thread.
+pub fn reference(scene: &dyn Scene, spp: usize) -> Vec<f32> {
+    let n = scene.size();
+    (0..n * n)
+        .into_par_iter()
+        .map(|i| pixel(scene, Variant::Deterministic, spp, 99, i))
+        .collect()
+}
+
+/// Root-mean-square difference.
+pub fn rmse(a: &[f32], b: &[f32]) -> f64 {
     (a.iter()
         .zip(b)
         .map(|(x, y)| ((x - y) as f64).powi(2))
         .sum::<f64>()
-        / a.len() as f64)
+        / a.len().max(1) as f64)
         .sqrt()
 }
 
-fn save(dir: &std::path::Path, name: &str, img: &[f32]) {
+/// Writes an image as an 8-bit PNG.
+pub fn save(dir: &Path, name: &str, img: &[f32], size: usize) {
     let t = Texture {
         name: name.into(),
-        dims: vec![SIZE, SIZE],
+        dims: vec![size, size],
         format: Format::U8,
         data: img
             .iter()
@@ -113,30 +186,279 @@ fn save(dir: &std::path::Path, name: &str, img: &[f32]) {
     write_slices(&t, dir, name).expect("write png");
 }
 
-/// Renders the reference and the four variants into `dir`; returns `(label, seconds, RMSE)`
-/// rows and prints them.
-pub fn run(dir: &std::path::Path) -> Vec<(String, f64, f64)> {
-    let mut rows = Vec::new();
-    println!(
-        "cloud: {SIZE}x{SIZE}, 8-octave fBm density, single scattering, ratio tracking (1 thread)"
-    );
-    let (reference, secs) = render(1024, false, 99);
-    println!("reference: 1024 spp deterministic in {secs:.1} s");
-    save(dir, "cloud_reference", &reference);
-    println!("{:>5} {:<14} {:>9} {:>9}", "spp", "noise", "time s", "RMSE");
-    for spp in [16, 64] {
-        for stochastic in [false, true] {
-            let (img, secs) = render(spp, stochastic, 7 + spp as u64);
-            let name = if stochastic {
-                "stochastic"
-            } else {
-                "deterministic"
-            };
-            let e = rmse(&img, &reference);
-            println!("{spp:>5} {name:<14} {secs:>9.2} {e:>9.5}");
-            save(dir, &format!("cloud_{name}_{spp}spp"), &img);
-            rows.push((format!("{name}_{spp}spp"), secs, e));
+/// The unit ball's density profile `max(0, 1 − 4r²)` about the cube's centre.
+fn ball(p: [f32; 3]) -> f32 {
+    let r2 = (p[0] - 0.5).powi(2) + (p[1] - 0.5).powi(2) + (p[2] - 0.5).powi(2);
+    (1.0 - 4.0 * r2).max(0.0)
+}
+
+/// The demo's cloud: single scattering, ratio tracking (see the module docs).
+pub struct SingleScatter {
+    /// Image side.
+    pub size: usize,
+}
+
+const CLOUD_FBM: Fractal = Fractal::new(8, 2.0, 0.5);
+/// Noise units per unit of the cube.
+const CLOUD_SCALE: f32 = 3.0;
+const CLOUD_MAJORANT: f32 = 12.0;
+
+impl SingleScatter {
+    fn density(&self, p: [f32; 3], rng: &mut Rng, v: Variant) -> f32 {
+        let shape = ball(p);
+        if shape == 0.0 {
+            return 0.0;
+        }
+        let q = p.map(|c| c * CLOUD_SCALE);
+        let foot = CLOUD_SCALE / self.size as f32;
+        let n = fbm(Basis::Perlin, v, q, CLOUD_FBM, foot, 3, &mut || rng.next());
+        // Linear in the noise (no clamp), so the estimators stay unbiased.
+        6.0 * shape * (1.0 + n)
+    }
+
+    /// Ratio-tracking transmittance from `o` along `d` over length `len`.
+    fn transmittance(&self, o: [f32; 3], d: [f32; 3], len: f32, rng: &mut Rng, v: Variant) -> f32 {
+        let (mut t, mut tr) = (0.0, 1.0);
+        loop {
+            t -= (1.0 - rng.next()).ln() / CLOUD_MAJORANT;
+            if t >= len {
+                return tr;
+            }
+            let p = [o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]];
+            tr *= 1.0 - self.density(p, rng, v) / CLOUD_MAJORANT;
         }
     }
-    rows
+}
+
+impl Scene for SingleScatter {
+    fn name(&self) -> String {
+        "cloud".into()
+    }
+    fn size(&self) -> usize {
+        self.size
+    }
+    /// A uniform point along the ray, σ_s there, and the transmittance to the eye and the light.
+    fn sample(&self, x: usize, y: usize, _: usize, rng: &mut Rng, v: Variant) -> f32 {
+        let u = (x as f32 + rng.next()) / self.size as f32;
+        let w = (y as f32 + rng.next()) / self.size as f32;
+        let t = rng.next();
+        let p = [u, w, t];
+        let sigma = self.density(p, rng, v);
+        if sigma == 0.0 {
+            return 0.0;
+        }
+        let view = self.transmittance([u, w, 0.0], [0.0, 0.0, 1.0], t, rng, v);
+        let light = self.transmittance(p, [0.0, -1.0, 0.0], w, rng, v);
+        0.8 * sigma * view * light
+    }
+}
+
+/// The paper's Table 3 setting (see the module docs): volumetric path tracing with weighted
+/// delta tracking, multiple scattering, a sun and a sky.
+pub struct PaperCloud {
+    /// Image side.
+    pub size: usize,
+    /// The noise summed into the fBm.
+    pub basis: Basis,
+    /// Majorant as a multiple of the density scale: [`PaperCloud::STRICT`] or
+    /// [`PaperCloud::OPTIMISED`].
+    pub majorant: f32,
+}
+
+const PAPER_FBM: Fractal = Fractal::new(10, 2.0, 0.5);
+const PAPER_DENSITY: f32 = 5.0;
+const ALBEDO: f32 = 0.95;
+const BOUNCES: usize = 6;
+const SUN: [f32; 3] = [0.267_261_24, -0.801_783_7, 0.534_522_5]; // towards the sun
+const SUN_RADIANCE: f32 = 3.0;
+const SKY: f32 = 0.15;
+
+impl PaperCloud {
+    /// A bound on the deterministic density: `(1 + Σ 2^-o · max|noise|)` times the density
+    /// scale, with `max|noise|` ≤ 1.04 for Perlin and ≤ 1 for the normalised sparse
+    /// convolution (each ≤ 2.08 summed over ten octaves at gain ½).
+    pub const STRICT: f32 = 3.1;
+    /// Half the strict majorant: below the density's peaks, which the null-scattering weights
+    /// tolerate (unbiased, at some variance), for half the tentative collisions.
+    pub const OPTIMISED: f32 = 1.55;
+
+    fn density(&self, p: [f32; 3], rng: &mut Rng, v: Variant) -> f32 {
+        let shape = ball(p);
+        if shape == 0.0 {
+            return 0.0;
+        }
+        let q = p.map(|c| c * CLOUD_SCALE);
+        let foot = CLOUD_SCALE / self.size as f32;
+        let n = fbm(self.basis, v, q, PAPER_FBM, foot, 5, &mut || rng.next());
+        PAPER_DENSITY * shape * (1.0 + n)
+    }
+
+    fn sigma_bar(&self) -> f32 {
+        PAPER_DENSITY * self.majorant
+    }
+
+    /// Distance from `o` (inside the cube) along `d` to the cube's boundary.
+    fn exit(o: [f32; 3], d: [f32; 3]) -> f32 {
+        let mut t = f32::MAX;
+        for a in 0..3 {
+            if d[a] > 1e-9 {
+                t = t.min((1.0 - o[a]) / d[a]);
+            } else if d[a] < -1e-9 {
+                t = t.min(-o[a] / d[a]);
+            }
+        }
+        t.max(0.0)
+    }
+
+    /// Ratio-tracking transmittance towards the sun (unbiased for any density estimate).
+    fn shadow(&self, o: [f32; 3], rng: &mut Rng, v: Variant) -> f32 {
+        let len = Self::exit(o, SUN);
+        let bar = self.sigma_bar();
+        let (mut t, mut tr) = (0.0, 1.0f32);
+        loop {
+            t -= (1.0 - rng.next()).ln() / bar;
+            if t >= len || tr == 0.0 {
+                return tr;
+            }
+            let p = [o[0] + t * SUN[0], o[1] + t * SUN[1], o[2] + t * SUN[2]];
+            tr *= 1.0 - self.density(p, rng, v) / bar;
+        }
+    }
+}
+
+impl Scene for PaperCloud {
+    fn name(&self) -> String {
+        let basis = match self.basis {
+            Basis::Perlin => "perlin",
+            Basis::Sparse(_) => "sparse",
+        };
+        let m = if self.majorant >= Self::STRICT {
+            "strict"
+        } else {
+            "optimised"
+        };
+        format!("paper-cloud-{basis}-{m}")
+    }
+    fn size(&self) -> usize {
+        self.size
+    }
+    /// One path: delta tracking with null scattering weighted as in the null-scattering path
+    /// integral (a real collision with probability |σ_t| / (|σ_t| + |σ_n|), the weight corrected
+    /// by σ/(σ̄ p)), next-event estimation of the sun at every real collision, isotropic phase.
+    fn sample(&self, x: usize, y: usize, _: usize, rng: &mut Rng, v: Variant) -> f32 {
+        let mut o = [
+            (x as f32 + rng.next()) / self.size as f32,
+            (y as f32 + rng.next()) / self.size as f32,
+            0.0,
+        ];
+        let mut d = [0.0f32, 0.0, 1.0];
+        let bar = self.sigma_bar();
+        let (mut weight, mut radiance) = (1.0f32, 0.0f32);
+        let phase = 1.0 / (4.0 * std::f32::consts::PI);
+        let mut bounces = 0;
+        loop {
+            let len = Self::exit(o, d);
+            let mut t = 0.0;
+            let mut scattered = false;
+            loop {
+                t -= (1.0 - rng.next()).ln() / bar;
+                if t >= len {
+                    break;
+                }
+                let p = [o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]];
+                let sigma = self.density(p, rng, v);
+                let null = bar - sigma;
+                let p_real = sigma.abs() / (sigma.abs() + null.abs()).max(1e-30);
+                if rng.next() < p_real {
+                    // Sun by next-event estimation, then an isotropic scattering.
+                    weight *= sigma / (bar * p_real) * ALBEDO;
+                    radiance += weight * phase * SUN_RADIANCE * self.shadow(p, rng, v);
+                    let z = 1.0 - 2.0 * rng.next();
+                    let r = (1.0 - z * z).max(0.0).sqrt();
+                    let a = 2.0 * std::f32::consts::PI * rng.next();
+                    d = [r * a.cos(), r * a.sin(), z];
+                    o = p;
+                    scattered = true;
+                    break;
+                }
+                weight *= null / (bar * (1.0 - p_real));
+            }
+            if !scattered {
+                return radiance + weight * SKY;
+            }
+            bounces += 1;
+            if bounces >= BOUNCES || weight == 0.0 {
+                return radiance;
+            }
+        }
+    }
+}
+
+/// What the demo's panel shows: the images it wrote and the equal-time table.
+pub struct Panel {
+    /// `(image name, seconds, RMSE)` of the 16- and 64-spp renders shown.
+    pub images: Vec<(String, f64, f64)>,
+    /// The equal-time table (text).
+    pub table: String,
+}
+
+/// The variants the cloud scenes compare (`bands`: with the band-limited ones).
+pub fn variants(bands: bool) -> Vec<Variant> {
+    let mut v = vec![
+        Variant::Deterministic,
+        Variant::Stochastic,
+        Variant::Tail(1),
+        Variant::Tail(2),
+        Variant::Tail(3),
+    ];
+    if bands {
+        v.extend([Variant::BandLimited, Variant::TailBandLimited(2)]);
+    }
+    v
+}
+
+/// Measures `scene` over `spps` against a `ref_spp` reference: rows, the table, and the
+/// reference image.
+pub fn equal_time(
+    scene: &dyn Scene,
+    variants: &[Variant],
+    spps: &[usize],
+    ref_spp: usize,
+    repeats: usize,
+) -> (Vec<Row>, String, Vec<f32>) {
+    let reference = reference(scene, ref_spp);
+    let names: Vec<String> = variants.iter().map(|v| v.name()).collect();
+    let rows = equal_time::measure(
+        &scene.name(),
+        &names,
+        spps,
+        repeats,
+        |v, spp, seed| render(scene, variants[v], spp, seed),
+        |img| rmse(img, &reference),
+    );
+    let table = equal_time::table(&rows, &scene.name(), &names[0], &names);
+    (rows, table, reference)
+}
+
+/// The demo's panel: the `cloud` scene's equal-time table, and images at 16 and 64 spp.
+pub fn run(dir: &Path) -> Panel {
+    let scene = SingleScatter { size: 64 };
+    let vs = variants(true);
+    let (rows, table, reference) = equal_time(&scene, &vs, &[4, 8, 16, 32, 64, 128], 1024, 2);
+    print!("{table}");
+    save(dir, "cloud_reference", &reference, scene.size);
+    let mut images = Vec::new();
+    for v in [Variant::Deterministic, Variant::Stochastic, Variant::Tail(2)] {
+        for spp in [16, 64] {
+            let img = render(&scene, v, spp, 1000 + spp as u64);
+            let name = format!("{}_{spp}spp", v.name().replace([' ', '(', ')'], ""));
+            save(dir, &format!("cloud_{name}"), &img, scene.size);
+            let secs = rows
+                .iter()
+                .find(|r| r.density == v.name() && r.spp == spp)
+                .map_or(0.0, |r| r.seconds);
+            images.push((name, secs, rmse(&img, &reference)));
+        }
+    }
+    Panel { images, table }
 }

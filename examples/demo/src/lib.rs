@@ -12,6 +12,8 @@
 pub mod apps;
 pub mod cloud;
 pub mod cnj_panel;
+pub mod equal_time;
+pub mod material;
 pub mod noises;
 mod output;
 
@@ -278,7 +280,7 @@ pub fn main() {
                 }
             }
             println!(
-                "\nstochastic noise: fBm cloud, deterministic vs one-sample fBm density (1 thread):"
+                "\nstochastic noise: fBm cloud, deterministic vs one-sample fBm density at equal time (1 thread):"
             );
             let cloud = cloud::run(&dir);
             output::extra_panels(&dir, &cnj, &cloud).unwrap_or_else(|e| {

@@ -85,6 +85,39 @@ pub fn fractal_stochastic(
     k.scale(noise(k.point(p), k.octave, k.xi))
 }
 
+/// [`fractal`] with its first `exact` octaves (the largest, which carry most of the weight)
+/// summed exactly by `noise` and one octave of the rest sampled by [`fractal_stochastic`] with
+/// `noise_estimate`. Unbiased like the full estimator, but the sampled part has weight
+/// `Σ_(o ≥ exact) |gain^o|`, so its variance shrinks by `gain^(2·exact)` (1/16 for two exact
+/// octaves at gain ½) while the cost is `exact` noise evaluations plus one estimate — the
+/// variance reduction that makes one-sample fBm pay inside a Monte Carlo renderer
+/// (`cargo run --release --example cloud`). `exact = 0` is [`fractal_stochastic`];
+/// `exact ≥ octaves` is [`fractal`].
+#[inline(always)]
+pub fn fractal_tail_stochastic(
+    p: [f32; 3],
+    f: Fractal,
+    exact: u32,
+    xi: f32,
+    mut noise: impl FnMut([f32; 3], u32) -> f32,
+    noise_estimate: impl FnOnce([f32; 3], u32, f32) -> f32,
+) -> f32 {
+    let (n, lac, gain) = f.sane();
+    let exact = exact.min(n);
+    let (mut amp, mut freq, mut sum) = (1.0f32, 1.0f32, 0.0f32);
+    for o in 0..exact {
+        sum += amp * noise([p[0] * freq, p[1] * freq, p[2] * freq], o);
+        amp *= gain;
+        freq *= lac;
+    }
+    if exact == n {
+        return sum;
+    }
+    let q = [p[0] * freq, p[1] * freq, p[2] * freq];
+    let tail = Fractal::new(n - exact, lac, gain);
+    sum + amp * fractal_stochastic(q, tail, xi, |q, o, x| noise_estimate(q, o + exact, x))
+}
+
 /// The octave Algorithm 2 picks for one ξ, with what the estimator needs of it.
 #[derive(Clone, Copy)]
 pub(crate) struct OctavePick {
@@ -271,6 +304,20 @@ pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
         octave_seed(seed, k.octave),
         k.xi,
     ))
+}
+
+/// [`fbm3`] with its first `exact` octaves exact and one octave of the rest sampled
+/// ([`fractal_tail_stochastic`]): `exact` Perlin evaluations and one gradient.
+#[inline]
+pub fn fbm3_tail_stochastic(p: [f32; 3], f: Fractal, exact: u32, seed: u32, xi: f32) -> f32 {
+    fractal_tail_stochastic(
+        p,
+        f,
+        exact,
+        xi,
+        |q, o| super::perlin::perlin3(q, octave_seed(seed, o)),
+        |q, o, x| perlin3_stochastic(q, octave_seed(seed, o), x),
+    )
 }
 
 /// [`fbm3_stochastic`] for lacunarity 2, gain ±½ and a point whose finest octave

@@ -86,7 +86,10 @@ pub use batch::{fbm3_batch, fbm3_stochastic_batch, perlin3_batch, perlin3_stocha
 pub use estimators::{
     ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
 };
-pub use fractal::{Fractal, fbm3, fbm3_stochastic, fractal, fractal_stochastic};
+pub use fractal::{
+    Fractal, fbm3, fbm3_stochastic, fbm3_tail_stochastic, fractal, fractal_stochastic,
+    fractal_tail_stochastic,
+};
 pub use gabor::{Gabor, GaborNoise, gabor3, gabor3_stochastic};
 pub use hash::{hash2, hash3, hash4, pcg};
 pub use perlin::{
@@ -98,7 +101,8 @@ pub use simplex::{
     simplex4, simplex4_grad, simplex4_stochastic,
 };
 pub use sparse::{
-    fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_stochastic1, sparse_conv3,
+    fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_stochastic1,
+    fbm_sparse_conv3_tail_stochastic, sparse_conv3,
     sparse_conv3_stochastic, sparse_conv3_stochastic1,
 };
 pub use voronoi::{

@@ -5,7 +5,7 @@
 //! (probability `(2i + 1)/n²`), giving eq. (8): `½ Σ_c ±k(|p − p_(i,c)|)`.
 
 use super::estimators::sanitize_xi;
-use super::fractal::{Fractal, fractal, fractal_stochastic, octave_seed};
+use super::fractal::{Fractal, fractal, fractal_stochastic, fractal_tail_stochastic, octave_seed};
 use super::hash::{PRIME, corner};
 use crate::math::{in_split_range, split, split_in_range};
 
@@ -265,6 +265,27 @@ pub fn fbm_sparse_conv3_stochastic(p: [f32; 3], f: Fractal, n: u32, seed: u32, x
     fractal_stochastic(p, f, xi, |q, o, x| {
         sparse_conv3_stochastic(q, n, octave_seed(seed, o), x)
     })
+}
+
+/// [`fbm_sparse_conv3`] with its first `exact` octaves exact and one octave of the rest sampled,
+/// one impulse per cell ([`fractal_tail_stochastic`]).
+#[inline]
+pub fn fbm_sparse_conv3_tail_stochastic(
+    p: [f32; 3],
+    f: Fractal,
+    exact: u32,
+    n: u32,
+    seed: u32,
+    xi: f32,
+) -> f32 {
+    fractal_tail_stochastic(
+        p,
+        f,
+        exact,
+        xi,
+        |q, o| sparse_conv3(q, n, octave_seed(seed, o)),
+        |q, o, x| sparse_conv3_stochastic(q, n, octave_seed(seed, o), x),
+    )
 }
 
 /// One-term estimator of [`sparse_conv3`]: the 27-cell sum is sampled too (Fajardo & Pharr §4:
