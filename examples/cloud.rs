@@ -48,7 +48,11 @@ fn main() {
         majorant,
     };
     let scenes: Vec<(Box<dyn Scene>, Vec<Variant>, usize)> = vec![
-        (Box::new(SingleScatter { size: 64 }), cloud::variants(true), ref_spp),
+        (
+            Box::new(SingleScatter { size: 64 }),
+            cloud::variants(true),
+            ref_spp,
+        ),
         (
             Box::new(paper(Basis::Perlin, PaperCloud::STRICT, 32)),
             cloud::variants(true),
@@ -77,7 +81,8 @@ fn main() {
         if only.as_ref().is_some_and(|o| !name.starts_with(o.as_str())) {
             continue;
         }
-        let (rows, table, reference) = cloud::equal_time(scene.as_ref(), variants, spps, *r, repeats);
+        let (rows, table, reference) =
+            cloud::equal_time(scene.as_ref(), variants, spps, *r, repeats);
         println!("{table}");
         cloud::save(&dir, &format!("{name}_reference"), &reference, scene.size());
         all.extend(rows);

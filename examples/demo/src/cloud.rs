@@ -26,8 +26,8 @@ use build_assets::export::png::write_slices;
 use build_assets::spec::Format;
 use build_assets::texture::Texture;
 use noisebake::stochastic::{
-    Fractal, fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_tail_stochastic,
-    fbm3, fbm3_stochastic, fbm3_tail_stochastic,
+    Fractal, fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_tail_stochastic, fbm3,
+    fbm3_stochastic, fbm3_tail_stochastic,
 };
 use rayon::prelude::*;
 use std::path::Path;
@@ -116,9 +116,7 @@ pub fn fbm(
             fbm_sparse_conv3(q, f, n, seed)
         }
         (Variant::Stochastic, Basis::Perlin) => fbm3_stochastic(q, f, seed, xi()),
-        (Variant::Stochastic, Basis::Sparse(n)) => {
-            fbm_sparse_conv3_stochastic(q, f, n, seed, xi())
-        }
+        (Variant::Stochastic, Basis::Sparse(n)) => fbm_sparse_conv3_stochastic(q, f, n, seed, xi()),
         (Variant::Tail(k) | Variant::TailBandLimited(k), Basis::Perlin) => {
             fbm3_tail_stochastic(q, f, k, seed, xi())
         }
@@ -192,6 +190,22 @@ fn ball(p: [f32; 3]) -> f32 {
     (1.0 - 4.0 * r2).max(0.0)
 }
 
+/// The part `[t0, t1]` of the ray `o + t·d` (`d` a unit vector), `t ∈ [0, len]`, inside the
+/// ball of [`ball`]: the only part where the density is not zero, so the only part tracking
+/// needs to visit — outside it every tentative collision is null with weight 1.
+fn ball_segment(o: [f32; 3], d: [f32; 3], len: f32) -> Option<(f32, f32)> {
+    let oc = [o[0] - 0.5, o[1] - 0.5, o[2] - 0.5];
+    let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    let c = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - 0.25;
+    let disc = b * b - c;
+    if disc <= 0.0 {
+        return None;
+    }
+    let h = disc.sqrt();
+    let (t0, t1) = ((-b - h).max(0.0), (-b + h).min(len));
+    (t0 < t1).then_some((t0, t1))
+}
+
 /// The demo's cloud: single scattering, ratio tracking (see the module docs).
 pub struct SingleScatter {
     /// Image side.
@@ -216,12 +230,16 @@ impl SingleScatter {
         6.0 * shape * (1.0 + n)
     }
 
-    /// Ratio-tracking transmittance from `o` along `d` over length `len`.
+    /// Ratio-tracking transmittance from `o` along `d` over length `len`, over the part of it
+    /// inside the cloud's ball.
     fn transmittance(&self, o: [f32; 3], d: [f32; 3], len: f32, rng: &mut Rng, v: Variant) -> f32 {
-        let (mut t, mut tr) = (0.0, 1.0);
+        let Some((mut t, end)) = ball_segment(o, d, len) else {
+            return 1.0;
+        };
+        let mut tr = 1.0;
         loop {
             t -= (1.0 - rng.next()).ln() / CLOUD_MAJORANT;
-            if t >= len {
+            if t >= end {
                 return tr;
             }
             let p = [o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]];
@@ -297,27 +315,17 @@ impl PaperCloud {
         PAPER_DENSITY * self.majorant
     }
 
-    /// Distance from `o` (inside the cube) along `d` to the cube's boundary.
-    fn exit(o: [f32; 3], d: [f32; 3]) -> f32 {
-        let mut t = f32::MAX;
-        for a in 0..3 {
-            if d[a] > 1e-9 {
-                t = t.min((1.0 - o[a]) / d[a]);
-            } else if d[a] < -1e-9 {
-                t = t.min(-o[a] / d[a]);
-            }
-        }
-        t.max(0.0)
-    }
-
-    /// Ratio-tracking transmittance towards the sun (unbiased for any density estimate).
+    /// Ratio-tracking transmittance towards the sun (unbiased for any density estimate),
+    /// over the part of the ray inside the cloud's ball.
     fn shadow(&self, o: [f32; 3], rng: &mut Rng, v: Variant) -> f32 {
-        let len = Self::exit(o, SUN);
+        let Some((mut t, end)) = ball_segment(o, SUN, f32::MAX) else {
+            return 1.0;
+        };
         let bar = self.sigma_bar();
-        let (mut t, mut tr) = (0.0, 1.0f32);
+        let mut tr = 1.0f32;
         loop {
             t -= (1.0 - rng.next()).ln() / bar;
-            if t >= len || tr == 0.0 {
+            if t >= end || tr == 0.0 {
                 return tr;
             }
             let p = [o[0] + t * SUN[0], o[1] + t * SUN[1], o[2] + t * SUN[2]];
@@ -357,12 +365,13 @@ impl Scene for PaperCloud {
         let phase = 1.0 / (4.0 * std::f32::consts::PI);
         let mut bounces = 0;
         loop {
-            let len = Self::exit(o, d);
-            let mut t = 0.0;
+            let Some((mut t, end)) = ball_segment(o, d, f32::MAX) else {
+                return radiance + weight * SKY;
+            };
             let mut scattered = false;
             loop {
                 t -= (1.0 - rng.next()).ln() / bar;
-                if t >= len {
+                if t >= end {
                     break;
                 }
                 let p = [o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]];
@@ -448,7 +457,11 @@ pub fn run(dir: &Path) -> Panel {
     print!("{table}");
     save(dir, "cloud_reference", &reference, scene.size);
     let mut images = Vec::new();
-    for v in [Variant::Deterministic, Variant::Stochastic, Variant::Tail(2)] {
+    for v in [
+        Variant::Deterministic,
+        Variant::Stochastic,
+        Variant::Tail(2),
+    ] {
         for spp in [16, 64] {
             let img = render(&scene, v, spp, 1000 + spp as u64);
             let name = format!("{}_{spp}spp", v.name().replace([' ', '(', ')'], ""));

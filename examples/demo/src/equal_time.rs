@@ -25,7 +25,9 @@ pub struct Row {
 
 /// Renders every variant at every sample count, interleaved, `repeats` times each (keeping
 /// the fastest time; the error of the first), and returns the rows. `render(variant, spp,
-/// seed)` returns the image; `rmse` measures it.
+/// seed)` returns the image; `rmse` measures it. Then every variant faster than the first
+/// (the baseline) renders at doubled sample counts until it has spent the baseline's time at
+/// 64 spp (or its largest count): its error in that time is then measured, not extrapolated.
 pub fn measure(
     scene: &str,
     variants: &[String],
@@ -56,6 +58,42 @@ pub fn measure(
                 seconds: secs,
                 rmse: e,
             });
+        }
+    }
+    let budget = rows
+        .iter()
+        .filter(|r| r.density == variants[0])
+        .filter(|r| r.spp <= 64)
+        .map(|r| r.seconds)
+        .fold(0.0f64, f64::max);
+    for (v, name) in variants.iter().enumerate().skip(1) {
+        loop {
+            let Some(last) = rows
+                .iter()
+                .filter(|r| &r.density == name)
+                .max_by_key(|r| r.spp)
+                .cloned()
+            else {
+                break;
+            };
+            if last.seconds >= budget || last.spp >= 1 << 16 {
+                break;
+            }
+            let spp = last.spp * 2;
+            let mut row = Row {
+                spp,
+                seconds: f64::MAX,
+                ..last
+            };
+            for rep in 0..repeats.max(1) {
+                let start = Instant::now();
+                let img = render(v, spp, 1000 + spp as u64);
+                row.seconds = row.seconds.min(start.elapsed().as_secs_f64());
+                if rep == 0 {
+                    row.rmse = rmse(&img);
+                }
+            }
+            rows.push(row);
         }
     }
     rows

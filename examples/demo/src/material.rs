@@ -141,4 +141,3 @@ impl Scene for Material {
         albedo * (0.25 + 0.9 * lit)
     }
 }
-

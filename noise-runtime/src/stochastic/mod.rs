@@ -102,8 +102,8 @@ pub use simplex::{
 };
 pub use sparse::{
     fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_stochastic1,
-    fbm_sparse_conv3_tail_stochastic, sparse_conv3,
-    sparse_conv3_stochastic, sparse_conv3_stochastic1,
+    fbm_sparse_conv3_tail_stochastic, sparse_conv3, sparse_conv3_stochastic,
+    sparse_conv3_stochastic1,
 };
 pub use voronoi::{
     SMOOTH_VORONOI_Q, feature_point3, smooth_voronoi3, smooth_voronoi3_stochastic, worley3_f1,
