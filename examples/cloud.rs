@@ -5,17 +5,18 @@
 //! reference of the deterministic noise.
 //!
 //! ```text
-//! cargo run --release --example cloud [-- --json rows.json] [--scene NAME] [--quick]
+//! cargo run --release --example cloud [-- --json rows.json] [--scene NAME] [--quick] [--readme]
 //! ```
 //!
 //! Prints, per scene, the RMSE each variant reaches in the time the deterministic render takes
-//! at 16 and at 64 spp and the time it needs to reach the deterministic 64-spp RMSE; `--json`
-//! writes every render as `{scene, density, spp, seconds, rmse}`. Images go to
-//! `target/noisebake-cloud/`.
+//! at 16 and at 64 spp and the time it needs to reach the deterministic 64-spp RMSE, then the
+//! paper's Table 3 rows beside ours; `--json` writes every render as `{scene, density, spp,
+//! seconds, rmse}`; `--readme` rewrites the generated block of README.md's stochastic section
+//! with this run's tables. Images go to `target/noisebake-cloud/`.
 
 use noisebake_demo::cloud::{self, Basis, PaperCloud, Scene, SingleScatter, Variant};
 use noisebake_demo::equal_time::{self, Row};
-use noisebake_demo::material::Material;
+use noisebake_demo::material::{Material, Xi};
 use std::path::PathBuf;
 
 fn main() {
@@ -23,14 +24,18 @@ fn main() {
     let mut json = None;
     let mut only = None;
     let mut quick = false;
+    let mut readme = false;
     let mut it = args.iter();
     while let Some(a) = it.next() {
         match a.as_str() {
             "--json" => json = it.next().map(PathBuf::from),
             "--scene" => only = it.next().cloned(),
             "--quick" => quick = true,
+            "--readme" => readme = true,
             other => {
-                eprintln!("unknown argument `{other}`; use --json FILE, --scene NAME, --quick");
+                eprintln!(
+                    "unknown argument `{other}`; use --json FILE, --scene NAME, --quick, --readme"
+                );
                 std::process::exit(2);
             }
         }
@@ -64,18 +69,27 @@ fn main() {
             ref_spp,
         ),
         (
-            Box::new(paper(Basis::Sparse(4), PaperCloud::STRICT, 16)),
+            Box::new(paper(Basis::Sparse(10), PaperCloud::STRICT, 16)),
             cloud::variants(false),
             ref_spp / 4,
         ),
         (
-            Box::new(paper(Basis::Sparse(4), PaperCloud::OPTIMISED, 16)),
+            Box::new(paper(Basis::Sparse(10), PaperCloud::OPTIMISED, 16)),
             cloud::variants(false),
             ref_spp / 4,
         ),
         (Box::new(Material::new(64)), Material::variants(), ref_spp),
+        (
+            Box::new(Material {
+                size: 64,
+                xi: Xi::White,
+            }),
+            Material::variants(),
+            ref_spp,
+        ),
     ];
     let mut all: Vec<Row> = Vec::new();
+    let mut tables = String::new();
     for (scene, variants, r) in &scenes {
         let name = scene.name();
         if only.as_ref().is_some_and(|o| !name.starts_with(o.as_str())) {
@@ -84,8 +98,23 @@ fn main() {
         let (rows, table, reference) =
             cloud::equal_time(scene.as_ref(), variants, spps, *r, repeats);
         println!("{table}");
+        tables += &table;
+        tables += "\n";
         cloud::save(&dir, &format!("{name}_reference"), &reference, scene.size());
         all.extend(rows);
+    }
+    let table3 = table3(&all, if quick { 16 } else { 32 });
+    print!("{table3}");
+    if readme {
+        let block = format!(
+            "```text\n{}{}```\n",
+            tables.trim_end().to_string() + "\n\n",
+            table3
+        );
+        match rewrite_readme(&block) {
+            Ok(()) => println!("README.md: generated block rewritten"),
+            Err(e) => eprintln!("README.md: {e}"),
+        }
     }
     if let Some(path) = json {
         std::fs::write(&path, equal_time::json(&all))
@@ -93,4 +122,71 @@ fn main() {
         println!("rows: {}", path.display());
     }
     println!("images in {}", dir.display());
+}
+
+/// The paper's Table 3 (Fajardo & Pharr, CPU column: AMD 3970X, 1080p, 32 spp): the speedup of
+/// the stochastic noise over the deterministic one at about equal MRSE.
+const PAPER_TABLE3: [(&str, &str, f64); 4] = [
+    ("sparse", "strict", 3.85),
+    ("perlin", "strict", 2.69),
+    ("sparse", "optimised", 6.14),
+    ("perlin", "optimised", 2.88),
+];
+
+/// Our rows of the paper's Table 3 beside its CPU speedups: per paper-cloud scene, the best
+/// stochastic variant's speedup at equal sample count (`spp`) and at equal error (the time the
+/// deterministic render takes to 64 spp over the time the variant needs for that RMSE).
+fn table3(rows: &[Row], spp: usize) -> String {
+    let mut out = format!(
+        "Table 3 (paper cloud: delta tracking with null scattering, multiple scattering, 10 octaves)\n  {:<10} {:<10} {:<30} {:>9} {:>10} {:>12} {:>13} {:>7}\n",
+        "noise", "majorant", "best stochastic variant", "RMSE", "speedup", "RMSE (det)", "equal-error", "paper"
+    );
+    for (noise, majorant, paper) in PAPER_TABLE3 {
+        let scene = format!("paper-cloud-{noise}-{majorant}");
+        let at = |name: &str| rows.iter().find(|r| r.scene == scene && r.density == name && r.spp == spp);
+        let Some(det) = at("deterministic") else { continue };
+        let Some(t64) = rows
+            .iter()
+            .find(|r| r.scene == scene && r.density == "deterministic" && r.spp == 64)
+        else {
+            continue;
+        };
+        // The stochastic variant (no band-limiting: those are biased) that reaches the
+        // deterministic 64-spp error fastest.
+        let best = rows
+            .iter()
+            .filter(|r| r.scene == scene && r.spp == spp)
+            .filter(|r| r.density.starts_with("stochastic"))
+            .filter_map(|r| {
+                equal_time::time_to(rows, &scene, &r.density, t64.rmse).map(|t| (r, t))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((r, t)) = best {
+            out += &format!(
+                "  {noise:<10} {majorant:<10} {:<30} {:>9.5} {:>9.2}x {:>12.5} {:>12.2}x {:>6.2}x\n",
+                r.density,
+                r.rmse,
+                det.seconds / r.seconds,
+                det.rmse,
+                t64.seconds / t,
+                paper
+            );
+        }
+    }
+    out += &format!(
+        "  speedup: deterministic time / variant time at {spp} spp; equal-error: deterministic time at 64 spp / the variant's time to its RMSE; paper: its CPU speedup at 32 spp, about equal MRSE\n"
+    );
+    out
+}
+
+/// Replaces the block between the equal-time markers of README.md with `block`.
+fn rewrite_readme(block: &str) -> Result<(), String> {
+    const BEGIN: &str = "<!-- equal-time: generated by `cargo run --release --example cloud -- --readme` -->\n";
+    const END: &str = "<!-- equal-time: end -->";
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
+    let text = std::fs::read_to_string(&path).map_err(|e| e.to_string())?;
+    let start = text.find(BEGIN).ok_or("no begin marker")? + BEGIN.len();
+    let end = text[start..].find(END).ok_or("no end marker")? + start;
+    let new = format!("{}{block}{}", &text[..start], &text[end..]);
+    std::fs::write(&path, new).map_err(|e| e.to_string())
 }

@@ -100,6 +100,16 @@ fn pairs() -> Vec<Pair> {
             |p| fbm3(p, Fractal::new(5, 1.93, 0.6), 3),
             |p, x| fbm3_tail_stochastic(p, Fractal::new(5, 1.93, 0.6), 4, 3, x),
         ),
+        (
+            "fbm3 octave (1 exact)",
+            |p| fbm3(p, Fractal::new(6, 2.0, 0.5), 3),
+            |p, x| fbm3_octave_stochastic(p, Fractal::new(6, 2.0, 0.5), 1, 3, x),
+        ),
+        (
+            "fbm3 octave (0 exact, gain -0.5)",
+            |p| fbm3(p, Fractal::new(6, 2.0, -0.5), 3),
+            |p, x| fbm3_octave_stochastic(p, Fractal::new(6, 2.0, -0.5), 0, 3, x),
+        ),
         ("fbm_sparse_conv3 tail (2 exact)", fbm_sparse, |p, x| {
             fbm_sparse_conv3_tail_stochastic(p, FBM_SPARSE, 2, 6, 3, x)
         }),

@@ -60,6 +60,8 @@ impl Material {
             Variant::Tail(1),
             Variant::Tail(2),
             Variant::Tail(3),
+            Variant::TailOctave(1),
+            Variant::TailOctave(2),
             Variant::BandLimited,
             Variant::TailBandLimited(2),
         ]

@@ -238,9 +238,10 @@ impl OctavePick {
     }
 }
 
-/// The seed of octave `o`: each octave of a fractal noise is an independent noise.
+/// The seed of octave `o` in [`fbm3`] and the other fractal sums: each octave is an independent
+/// noise. For building a sum with [`fractal`] or [`fractal_tail_stochastic`] that matches them.
 #[inline(always)]
-pub(crate) fn octave_seed(seed: u32, o: u32) -> u32 {
+pub fn octave_seed(seed: u32, o: u32) -> u32 {
     seed.wrapping_add(o.wrapping_mul(0x9e37_79b9))
 }
 
@@ -318,6 +319,17 @@ pub fn fbm3_tail_stochastic(p: [f32; 3], f: Fractal, exact: u32, seed: u32, xi: 
         |q, o| super::perlin::perlin3(q, octave_seed(seed, o)),
         |q, o, x| perlin3_stochastic(q, octave_seed(seed, o), x),
     )
+}
+
+/// [`fbm3`] with its first `exact` octaves exact and one octave of the rest chosen by ξ
+/// (Algorithm 2's choice, weight `|gain^o|`) and evaluated exactly: only the octave choice is
+/// random, not the corner. For Perlin noise on a CPU the one-gradient estimator saves little
+/// over a full `perlin3` (8 corners in SIMD lanes) but adds the corner choice's variance, so
+/// inside a renderer this is usually the better trade (`cargo run --release --example cloud`).
+#[inline]
+pub fn fbm3_octave_stochastic(p: [f32; 3], f: Fractal, exact: u32, seed: u32, xi: f32) -> f32 {
+    let perlin = |q: [f32; 3], o: u32| super::perlin::perlin3(q, octave_seed(seed, o));
+    fractal_tail_stochastic(p, f, exact, xi, perlin, |q, o, _| perlin(q, o))
 }
 
 /// [`fbm3_stochastic`] for lacunarity 2, gain ±½ and a point whose finest octave
