@@ -37,7 +37,7 @@ use std::path::Path;
 pub struct Rng(pub u64);
 impl Rng {
     /// A uniform number in `[0, 1)`.
-    pub fn next(&mut self) -> f32 {
+    pub fn uniform(&mut self) -> f32 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -239,7 +239,9 @@ impl SingleScatter {
         }
         let q = p.map(|c| c * CLOUD_SCALE);
         let foot = CLOUD_SCALE / self.size as f32;
-        let n = fbm(Basis::Perlin, v, q, CLOUD_FBM, foot, 3, &mut || rng.next());
+        let n = fbm(Basis::Perlin, v, q, CLOUD_FBM, foot, 3, &mut || {
+            rng.uniform()
+        });
         // Linear in the noise (no clamp), so the estimators stay unbiased.
         6.0 * shape * (1.0 + n)
     }
@@ -252,7 +254,7 @@ impl SingleScatter {
         };
         let mut tr = 1.0;
         loop {
-            t -= (1.0 - rng.next()).ln() / CLOUD_MAJORANT;
+            t -= (1.0 - rng.uniform()).ln() / CLOUD_MAJORANT;
             if t >= end {
                 return tr;
             }
@@ -271,9 +273,9 @@ impl Scene for SingleScatter {
     }
     /// A uniform point along the ray, σ_s there, and the transmittance to the eye and the light.
     fn sample(&self, x: usize, y: usize, _: usize, rng: &mut Rng, v: Variant) -> f32 {
-        let u = (x as f32 + rng.next()) / self.size as f32;
-        let w = (y as f32 + rng.next()) / self.size as f32;
-        let t = rng.next();
+        let u = (x as f32 + rng.uniform()) / self.size as f32;
+        let w = (y as f32 + rng.uniform()) / self.size as f32;
+        let t = rng.uniform();
         let p = [u, w, t];
         let sigma = self.density(p, rng, v);
         if sigma == 0.0 {
@@ -321,7 +323,7 @@ impl PaperCloud {
         }
         let q = p.map(|c| c * CLOUD_SCALE);
         let foot = CLOUD_SCALE / self.size as f32;
-        let n = fbm(self.basis, v, q, PAPER_FBM, foot, 5, &mut || rng.next());
+        let n = fbm(self.basis, v, q, PAPER_FBM, foot, 5, &mut || rng.uniform());
         PAPER_DENSITY * shape * (1.0 + n)
     }
 
@@ -338,7 +340,7 @@ impl PaperCloud {
         let bar = self.sigma_bar();
         let mut tr = 1.0f32;
         loop {
-            t -= (1.0 - rng.next()).ln() / bar;
+            t -= (1.0 - rng.uniform()).ln() / bar;
             if t >= end || tr == 0.0 {
                 return tr;
             }
@@ -369,8 +371,8 @@ impl Scene for PaperCloud {
     /// by σ/(σ̄ p)), next-event estimation of the sun at every real collision, isotropic phase.
     fn sample(&self, x: usize, y: usize, _: usize, rng: &mut Rng, v: Variant) -> f32 {
         let mut o = [
-            (x as f32 + rng.next()) / self.size as f32,
-            (y as f32 + rng.next()) / self.size as f32,
+            (x as f32 + rng.uniform()) / self.size as f32,
+            (y as f32 + rng.uniform()) / self.size as f32,
             0.0,
         ];
         let mut d = [0.0f32, 0.0, 1.0];
@@ -384,7 +386,7 @@ impl Scene for PaperCloud {
             };
             let mut scattered = false;
             loop {
-                t -= (1.0 - rng.next()).ln() / bar;
+                t -= (1.0 - rng.uniform()).ln() / bar;
                 if t >= end {
                     break;
                 }
@@ -392,13 +394,13 @@ impl Scene for PaperCloud {
                 let sigma = self.density(p, rng, v);
                 let null = bar - sigma;
                 let p_real = sigma.abs() / (sigma.abs() + null.abs()).max(1e-30);
-                if rng.next() < p_real {
+                if rng.uniform() < p_real {
                     // Sun by next-event estimation, then an isotropic scattering.
                     weight *= sigma / (bar * p_real) * ALBEDO;
                     radiance += weight * phase * SUN_RADIANCE * self.shadow(p, rng, v);
-                    let z = 1.0 - 2.0 * rng.next();
+                    let z = 1.0 - 2.0 * rng.uniform();
                     let r = (1.0 - z * z).max(0.0).sqrt();
-                    let a = 2.0 * std::f32::consts::PI * rng.next();
+                    let a = 2.0 * std::f32::consts::PI * rng.uniform();
                     d = [r * a.cos(), r * a.sin(), z];
                     o = p;
                     scattered = true;

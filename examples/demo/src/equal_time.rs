@@ -67,15 +67,12 @@ pub fn measure(
         .map(|r| r.seconds)
         .fold(0.0f64, f64::max);
     for (v, name) in variants.iter().enumerate().skip(1) {
-        loop {
-            let Some(last) = rows
-                .iter()
-                .filter(|r| &r.density == name)
-                .max_by_key(|r| r.spp)
-                .cloned()
-            else {
-                break;
-            };
+        while let Some(last) = rows
+            .iter()
+            .filter(|r| &r.density == name)
+            .max_by_key(|r| r.spp)
+            .cloned()
+        {
             if last.seconds >= budget || last.spp >= 1 << 16 {
                 break;
             }

@@ -1,51 +1,65 @@
 //! Every noise variant the equal-time scenes ship as unbiased converges to the deterministic
-//! image: in each scene (tiny sizes), the mean over all pixels and samples of the stochastic,
-//! tail and octave variants lies within 4 standard errors of the deterministic variant's,
-//! each from its own independent samples — and so does a ±1-weighted mean over the pixels,
-//! which a bias of either sign in different places would move.
+//! image, pixel by pixel. In each scene (tiny sizes), each pixel's mean over its samples under
+//! the stochastic, tail and octave variants is compared with the deterministic variant's, each
+//! from its own independent samples: with `z` the difference over its standard error, the sum
+//! of `z²` over the pixels must stay below its χ² bound (`N + 6·√(2N)` for `N` pixels) and no
+//! `|z|` may exceed 5.5 — probabilities far below 10⁻⁶ for an unbiased variant.
 
 use noisebake_demo::cloud::{Basis, PaperCloud, Rng, Scene, SingleScatter, Variant};
 use noisebake_demo::material::{Material, Xi};
 
-/// `(mean, standard error)` of the plain and the ±1-weighted pixel mean.
-fn estimate(scene: &dyn Scene, v: Variant, spp: usize, seed: u64) -> [(f64, f64); 2] {
+/// Per pixel: `(mean, squared standard error)` over `spp` samples.
+fn pixels(scene: &dyn Scene, v: Variant, spp: usize, seed: u64) -> Vec<(f64, f64)> {
     let n = scene.size();
-    let mut acc = [(0.0f64, 0.0f64); 2];
-    let mut count = 0.0;
-    for i in 0..n * n {
-        let sign = if (i * 7 + i / n) % 3 == 0 { -1.0 } else { 1.0 };
-        let mut rng = Rng(seed ^ (i as u64).wrapping_mul(0x2545_f491_4f6c_dd1d));
-        for s in 0..spp {
-            let x = scene.sample(i % n, i / n, s, &mut rng, v) as f64;
-            for (k, w) in [1.0, sign].into_iter().enumerate() {
-                acc[k].0 += w * x;
-                acc[k].1 += x * x;
+    (0..n * n)
+        .map(|i| {
+            let mut rng = Rng(seed ^ (i as u64).wrapping_mul(0x2545_f491_4f6c_dd1d));
+            let (mut s, mut s2) = (0.0f64, 0.0f64);
+            for k in 0..spp {
+                let x = scene.sample(i % n, i / n, k, &mut rng, v) as f64;
+                s += x;
+                s2 += x * x;
             }
-            count += 1.0;
-        }
-    }
-    acc.map(|(s, s2)| {
-        let mean = s / count;
-        let var = (s2 / count - mean * mean).max(0.0);
-        (mean, (var / count).sqrt())
-    })
+            let mean = s / spp as f64;
+            let var = (s2 / spp as f64 - mean * mean).max(0.0);
+            (mean, var / spp as f64)
+        })
+        .collect()
 }
 
 fn check(scene: &dyn Scene, spp: usize) {
-    let det = estimate(scene, Variant::Deterministic, spp, 1);
-    for v in [Variant::Stochastic, Variant::Tail(2), Variant::TailOctave(1)] {
-        let got = estimate(scene, v, spp, 2);
-        for k in 0..2 {
-            let ((a, sa), (b, sb)) = (got[k], det[k]);
-            let bound = 4.0 * (sa * sa + sb * sb).sqrt();
-            assert!(
-                (a - b).abs() <= bound,
-                "{} {}: {} mean {a} vs deterministic {b} (4σ = {bound})",
-                scene.name(),
-                v.name(),
-                ["plain", "weighted"][k]
-            );
+    let det = pixels(scene, Variant::Deterministic, spp, 1);
+    for v in [
+        Variant::Stochastic,
+        Variant::Tail(2),
+        Variant::TailOctave(1),
+    ] {
+        let got = pixels(scene, v, spp, 2);
+        let (mut chi2, mut worst, mut n) = (0.0f64, 0.0f64, 0.0f64);
+        for ((a, sa), (b, sb)) in got.iter().zip(&det) {
+            let se2 = sa + sb;
+            if se2 == 0.0 {
+                assert_eq!(
+                    a,
+                    b,
+                    "{} {}: a noiseless pixel differs",
+                    scene.name(),
+                    v.name()
+                );
+                continue;
+            }
+            let z = (a - b) / se2.sqrt();
+            chi2 += z * z;
+            worst = worst.max(z.abs());
+            n += 1.0;
         }
+        let bound = n + 6.0 * (2.0 * n).sqrt();
+        assert!(
+            chi2 <= bound && worst <= 5.5,
+            "{} {}: Σz² = {chi2:.1} over {n} pixels (bound {bound:.1}), largest |z| {worst:.2}",
+            scene.name(),
+            v.name()
+        );
     }
 }
 

@@ -87,8 +87,8 @@ pub use estimators::{
     ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
 };
 pub use fractal::{
-    Fractal, fbm3, fbm3_octave_stochastic, fbm3_stochastic, fbm3_tail_stochastic, fractal, fractal_stochastic,
-    fractal_tail_stochastic, octave_seed,
+    Fractal, fbm3, fbm3_octave_stochastic, fbm3_stochastic, fbm3_tail_stochastic, fractal,
+    fractal_stochastic, fractal_tail_stochastic, octave_seed,
 };
 pub use gabor::{Gabor, GaborNoise, gabor3, gabor3_stochastic};
 pub use hash::{hash2, hash3, hash4, pcg};
