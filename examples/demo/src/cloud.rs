@@ -468,7 +468,8 @@ pub fn equal_time(
 }
 
 /// The demo's panel: the `cloud` scene's equal-time table (the main variants, fewer sample
-/// counts than `cargo run --release --example cloud`), and images at 16 and 64 spp.
+/// counts than `cargo run --release --example cloud`), its rows in `dir/cloud.json`, and
+/// images at 16 and 64 spp.
 pub fn run(dir: &Path) -> Panel {
     let scene = SingleScatter { size: 64 };
     let vs = [
@@ -480,6 +481,10 @@ pub fn run(dir: &Path) -> Panel {
     ];
     let (rows, table, reference) = equal_time(&scene, &vs, &[4, 16, 64], 1024, 1);
     print!("{table}");
+    let json = dir.join("cloud.json");
+    if let Err(e) = std::fs::write(&json, equal_time::json(&rows)) {
+        eprintln!("{}: {e}", json.display());
+    }
     save(dir, "cloud_reference", &reference, scene.size);
     let mut images = Vec::new();
     for v in [
