@@ -24,6 +24,7 @@ fn r2_bits(x: i32, y: i32) -> u32 {
 }
 
 /// The R2 low-discrepancy grid: `frac(x/ρ + y/ρ²)` with ρ ≈ 1.3247 the plastic number.
+#[must_use]
 #[inline]
 pub fn r2(x: i32, y: i32) -> f32 {
     to_unit(r2_bits(x, y))
@@ -31,6 +32,7 @@ pub fn r2(x: i32, y: i32) -> f32 {
 
 /// Plus-shaped grid: `((x + 3y + 0.5) / 5) mod 1`: every plus-shaped neighbourhood (a pixel and
 /// its four edge neighbours) holds each of ⅒, ³⁄₁₀, …, ⁹⁄₁₀ exactly once.
+#[must_use]
 #[inline]
 pub fn plus(x: i32, y: i32) -> f32 {
     let k = (x as i64 + 3 * y as i64).rem_euclid(5);
@@ -39,6 +41,7 @@ pub fn plus(x: i32, y: i32) -> f32 {
 
 /// Interleaved gradient noise (Jimenez 2014): `frac(52.9829189 · frac(0.06711056·x + 0.00583715·y))`.
 /// The inner fraction is exact in 64-bit fixed point; the outer product in `f64`.
+#[must_use]
 #[inline]
 pub fn ign(x: i32, y: i32) -> f32 {
     const A: u64 = 0x112e_285c_6a8f_1506; // 0.06711056 · 2^64
@@ -54,6 +57,7 @@ pub fn ign(x: i32, y: i32) -> f32 {
 /// Bayer (ordered dither) matrix of size `N × N` (`N` a power of two from 2 to 65536), tiled:
 /// `(index + 0.5) / N²`, always in `[0, 1)`. For `N ≥ 4096` an f32 cannot tell all `N²` ranks
 /// apart, so neighbouring ranks may share a value.
+#[must_use]
 #[inline]
 pub fn bayer<const N: u32>(x: i32, y: i32) -> f32 {
     const {
@@ -85,6 +89,7 @@ fn animate(v: f32, frame: u32) -> f32 {
 }
 
 /// [`r2`] animated over frames by the golden ratio.
+#[must_use]
 #[inline]
 pub fn r2_frame(x: i32, y: i32, frame: u32) -> f32 {
     let g = ((frame as u64).wrapping_mul(GOLDEN) >> 32) as u32;
@@ -92,18 +97,21 @@ pub fn r2_frame(x: i32, y: i32, frame: u32) -> f32 {
 }
 
 /// [`plus`] animated over frames by the golden ratio.
+#[must_use]
 #[inline]
 pub fn plus_frame(x: i32, y: i32, frame: u32) -> f32 {
     animate(plus(x, y), frame)
 }
 
 /// [`ign`] animated over frames by the golden ratio.
+#[must_use]
 #[inline]
 pub fn ign_frame(x: i32, y: i32, frame: u32) -> f32 {
     animate(ign(x, y), frame)
 }
 
 /// [`bayer`] animated over frames by the golden ratio.
+#[must_use]
 #[inline]
 pub fn bayer_frame<const N: u32>(x: i32, y: i32, frame: u32) -> f32 {
     animate(bayer::<N>(x, y), frame)

@@ -47,10 +47,10 @@
 //! let mut mean = 0.0;
 //! for y in 0..64 {
 //!     for x in 0..64 {
-//!         mean += stochastic::perlin3_stochastic(p, 7, ldg::r2(x, y)) / 4096.0;
+//!         mean += stochastic::Perlin::new(7).estimate(p, ldg::r2(x, y)) / 4096.0;
 //!     }
 //! }
-//! assert!((mean - stochastic::perlin3(p, 7)).abs() < 0.002);
+//! assert!((mean - stochastic::Perlin::new(7).sample(p)).abs() < 0.002);
 //! ```
 #![no_std]
 #![deny(unsafe_code)]

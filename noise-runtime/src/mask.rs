@@ -93,18 +93,21 @@ macro_rules! mask {
             }
 
             /// The texel at the given coordinates, each wrapped toroidally onto its axis.
+            #[must_use]
             #[inline(always)]
             pub fn get<C: Coord>(&self, $($c: C),+) -> T {
                 T::read(self.bytes, self.index($($c.wrap($d)),+))
             }
 
             /// Channel 0 of [`get`](Self::get) normalised to `[0, 1)`.
+            #[must_use]
             #[inline(always)]
             pub fn get_unit<C: Coord>(&self, $($c: C),+) -> f32 {
                 self.get($($c),+).unit(0)
             }
 
             /// Channel `c` of a unit-vector texture (stored as `0.5 + 0.5·v`) decoded to `[-1, 1]`.
+            #[must_use]
             #[inline(always)]
             pub fn get_signed<C: Coord>(&self, $($c: C),+, channel: usize) -> f32 {
                 let t = self.get($($c),+);
@@ -113,6 +116,7 @@ macro_rules! mask {
 
             /// Whether the texel is "on" at coverage `p`: its value is below `p`. For a mask with
             /// a flat histogram the on fraction of every slice is `p` to within one texel.
+            #[must_use]
             #[inline(always)]
             pub fn threshold<C: Coord>(&self, $($c: C),+, p: f32) -> bool {
                 self.get_unit($($c),+) < p
@@ -137,6 +141,7 @@ mask!(
 impl<T: Texel, const W: u32, const H: u32> Mask2<T, W, H> {
     /// The k-th independent value of pixel (x, y): the texel offset by the k-th R2 point scaled
     /// to the mask (STBN §5.2; FAST §6). `get_k(x, y, 0) == get(x, y)`.
+    #[must_use]
     #[inline(always)]
     pub fn get_k<C: Coord>(&self, x: C, y: C, k: u32) -> T {
         let (ox, oy) = r2_point(k);
@@ -144,12 +149,32 @@ impl<T: Texel, const W: u32, const H: u32> Mask2<T, W, H> {
         let yi = (y.wrap(H) + scale(oy, H)).wrap(H);
         T::read(self.bytes, self.index(xi, yi))
     }
+
+    /// Channel 0 of [`get_k`](Self::get_k) normalised to `[0, 1)`.
+    #[must_use]
+    #[inline(always)]
+    pub fn get_k_unit<C: Coord>(&self, x: C, y: C, k: u32) -> f32 {
+        self.get_k(x, y, k).unit(0)
+    }
+
+    /// The k-th independent pair of values of a pixel: R2-offset reads `2k` and `2k + 1`
+    /// (as [`Mask3::get_pair_unit`]).
+    #[must_use]
+    #[inline(always)]
+    pub fn get_pair_unit<C: Coord>(&self, x: C, y: C, k: u32) -> [f32; 2] {
+        let k2 = k.wrapping_mul(2);
+        [
+            self.get_k_unit(x, y, k2),
+            self.get_k_unit(x, y, k2.wrapping_add(1)),
+        ]
+    }
 }
 
 impl<T: Texel, const W: u32, const H: u32, const D: u32> Mask3<T, W, H, D> {
     /// The k-th independent value of pixel (x, y) in frame t: the texel offset spatially by the
     /// k-th R2 point scaled to the mask (STBN §5.2; FAST §6). `get_k(x, y, t, 0) == get(x, y, t)`.
     /// Exact for every `k < 2^32` (see [`sequence`](crate::sequence)).
+    #[must_use]
     #[inline(always)]
     pub fn get_k<C: Coord>(&self, x: C, y: C, t: C, k: u32) -> T {
         let (ox, oy) = r2_point(k);
@@ -159,6 +184,7 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32> Mask3<T, W, H, D> {
     }
 
     /// Channel 0 of [`get_k`](Self::get_k) normalised to `[0, 1)`.
+    #[must_use]
     #[inline(always)]
     pub fn get_k_unit<C: Coord>(&self, x: C, y: C, t: C, k: u32) -> f32 {
         self.get_k(x, y, t, k).unit(0)
@@ -167,6 +193,7 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32> Mask3<T, W, H, D> {
     /// The k-th independent *pair* of values of a pixel from a scalar mask: R2-offset reads
     /// `2k` and `2k + 1` (STBN §5.4: scalar masks feeding 2D warps such as
     /// [`warp::cosine_hemisphere`](crate::warp::cosine_hemisphere)).
+    #[must_use]
     #[inline(always)]
     pub fn get_pair_unit<C: Coord>(&self, x: C, y: C, t: C, k: u32) -> [f32; 2] {
         let k2 = k.wrapping_mul(2);
@@ -179,12 +206,32 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32> Mask3<T, W, H, D> {
 
 impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, W, H, D, E> {
     /// The k-th independent value of a pixel, as [`Mask3::get_k`].
+    #[must_use]
     #[inline(always)]
     pub fn get_k<C: Coord>(&self, x: C, y: C, z: C, w: C, k: u32) -> T {
         let (ox, oy) = r2_point(k);
         let xi = (x.wrap(W) + scale(ox, W)).wrap(W);
         let yi = (y.wrap(H) + scale(oy, H)).wrap(H);
         T::read(self.bytes, self.index(xi, yi, z.wrap(D), w.wrap(E)))
+    }
+
+    /// Channel 0 of [`get_k`](Self::get_k) normalised to `[0, 1)`.
+    #[must_use]
+    #[inline(always)]
+    pub fn get_k_unit<C: Coord>(&self, x: C, y: C, z: C, w: C, k: u32) -> f32 {
+        self.get_k(x, y, z, w, k).unit(0)
+    }
+
+    /// The k-th independent pair of values of a pixel: R2-offset reads `2k` and `2k + 1`
+    /// (as [`Mask3::get_pair_unit`]).
+    #[must_use]
+    #[inline(always)]
+    pub fn get_pair_unit<C: Coord>(&self, x: C, y: C, z: C, w: C, k: u32) -> [f32; 2] {
+        let k2 = k.wrapping_mul(2);
+        [
+            self.get_k_unit(x, y, z, w, k2),
+            self.get_k_unit(x, y, z, w, k2.wrapping_add(1)),
+        ]
     }
 }
 
@@ -244,6 +291,7 @@ fn write_gpu_bytes(
     Ok(())
 }
 
+#[doc(hidden)]
 /// `bytes[offset..offset + len]` in a `const` context: the texel data of an included file that
 /// carries a header (cache entries). Panics at compile time when out of range.
 pub const fn payload(bytes: &'static [u8], offset: usize, len: usize) -> &'static [u8] {
@@ -253,6 +301,7 @@ pub const fn payload(bytes: &'static [u8], offset: usize, len: usize) -> &'stati
 /// `include_bytes!` into a 16-byte-aligned static, as a `&'static [u8]` (what
 /// `include_bytes_aligned` does; kept here so the runtime stays dependency-free). Used by
 /// generated code; alignment lets vector loads of `u16`/`f32` texels take the fast path.
+#[doc(hidden)]
 #[macro_export]
 macro_rules! include_aligned {
     ($path:expr) => {{

@@ -249,6 +249,7 @@ pub fn sqrt(x: f32) -> f32 {
 /// their squares are exact in f64, and never equal to an f32 `x` (the square of an odd 25-bit
 /// integer has 49 or 50 bits): the test decides the correctly rounded root.
 #[inline]
+#[doc(hidden)]
 pub fn sqrt_soft(x: f32) -> f32 {
     if x.is_nan() || x <= 0.0 {
         return 0.0;
@@ -336,6 +337,7 @@ pub fn sqrt_f64(x: f64) -> f64 {
 /// instead of a float-to-integer conversion, whose saturating semantics add two compares and
 /// two conditional moves per axis.
 #[inline(always)]
+#[doc(hidden)]
 pub fn split_in_range(x: f32) -> (i32, f32) {
     let (r, f) = nearest(x);
     // Strictly negative, not −0: an integer test of the bits, as in `split`.
@@ -361,6 +363,7 @@ fn nearest(x: f32) -> (i32, f32) {
 /// Whether every coordinate is finite and below 2^22 in magnitude (then [`split_in_range`]
 /// applies; larger coordinates take [`split`]).
 #[inline(always)]
+#[doc(hidden)]
 pub fn in_split_range<const N: usize>(p: [f32; N]) -> bool {
     // `|v| < 2^22` is `abs_bits < 0x4a80_0000` (NaN and infinity are above), which is the sign
     // bit of `abs_bits + (2^31 − 0x4a80_0000)` being clear: one add per coordinate, their OR,

@@ -11,14 +11,14 @@
 //! | `nb_r2`, `nb_r2_frame`, `nb_plus`, `nb_plus_frame`, `nb_bayer`, `nb_bayer_frame` | [`ldg`](crate::ldg) | bit for bit (64-bit fixed point emulated in `u32` pairs) |
 //! | `nb_ign`, `nb_ign_frame` | [`ldg::ign`](crate::ldg::ign) | within 2⁻²³ (the CPU rounds an `f64`) |
 //! | `nb_hash2`, `nb_hash3`, `nb_pcg` | [`stochastic::hash2`](crate::stochastic::hash2), [`pcg`](crate::stochastic::pcg) | bit for bit |
-//! | `nb_perlin3`, `nb_fbm3`, `nb_perlin3_estimate`, `nb_fbm3_estimate` | [`stochastic::perlin3`](crate::stochastic::perlin3) … | within tolerances (below) |
+//! | `nb_perlin3`, `nb_fbm3`, `nb_perlin3_estimate`, `nb_fbm3_estimate` | [`Perlin`](crate::stochastic::Perlin), [`Fbm`](crate::stochastic::Fbm) | within tolerances (below) |
 //! | `nb_cnj2_closest` | [`Cnj2::closest`](crate::cnj::Cnj2::closest) | same site; point within tolerance |
 //!
 //! The floating-point functions cannot promise the same bits: WGSL lets an implementation fuse
 //! `a * b + c` into one rounding (GPUs do), and has no `f64`, which the CPU's CNJ queries use.
 //! The `noisebake-gpu` tests hold them, on a Vulkan device, to these tolerances:
 //!
-//! - `nb_perlin3` within `2^-16` of [`perlin3`](crate::stochastic::perlin3) (values of
+//! - `nb_perlin3` within `2^-16` of [`Perlin::sample`](crate::stochastic::Perlin::sample) (values of
 //!   magnitude ≤ 2 through seven lerps and the fades, each of which may round once more or
 //!   once less when fused: a few ulps of 2, far below the bound); `nb_fbm3` within
 //!   `Σ|gain^o| · 2^-16`.

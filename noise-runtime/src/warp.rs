@@ -13,6 +13,7 @@ fn unit(u: f32) -> f32 {
 
 /// Uniform point in the unit disk by Shirley and Chiu's concentric map (area-preserving, low
 /// distortion: strata of the square stay compact on the disk).
+#[must_use]
 #[inline]
 pub fn disk_concentric(u: f32, v: f32) -> [f32; 2] {
     let a = 2.0 * unit(u) - 1.0;
@@ -31,6 +32,7 @@ pub fn disk_concentric(u: f32, v: f32) -> [f32; 2] {
 }
 
 /// Uniform direction on the unit sphere: `z = 1 − 2u`, azimuth `2πv` (Archimedes' hat-box).
+#[must_use]
 #[inline]
 pub fn sphere_uniform(u: f32, v: f32) -> [f32; 3] {
     let z = 1.0 - 2.0 * unit(u);
@@ -40,6 +42,7 @@ pub fn sphere_uniform(u: f32, v: f32) -> [f32; 3] {
 }
 
 /// Uniform direction on the upper (`z ≥ 0`) unit hemisphere: `z = u`, azimuth `2πv`.
+#[must_use]
 #[inline]
 pub fn hemisphere_uniform(u: f32, v: f32) -> [f32; 3] {
     let z = unit(u);
@@ -50,6 +53,7 @@ pub fn hemisphere_uniform(u: f32, v: f32) -> [f32; 3] {
 
 /// Cosine-weighted direction on the upper unit hemisphere (density `cos θ / π`) by Malley's
 /// method: a concentric disk point lifted to the hemisphere.
+#[must_use]
 #[inline]
 pub fn cosine_hemisphere(u: f32, v: f32) -> [f32; 3] {
     let [x, y] = disk_concentric(u, v);

@@ -59,19 +59,19 @@ fn lattice_noise_is_total_and_finite_on_finite_input() {
     for p in points3() {
         for &xi in &XI {
             let vals = [
-                perlin3(p, 7),
-                perlin3_stochastic(p, 7, xi),
-                perlin3_grad(p, 7).0,
-                simplex3(p, 7),
-                simplex3_stochastic(p, 7, xi),
-                perlin2([p[0], p[1]], 7),
-                perlin2_stochastic([p[0], p[1]], 7, xi),
-                simplex2([p[0], p[1]], 7),
-                simplex2_stochastic([p[0], p[1]], 7, xi),
-                perlin4([p[0], p[1], p[2], 0.5], 7),
-                perlin4_stochastic([p[0], p[1], p[2], 0.5], 7, xi),
-                simplex4([p[0], p[1], p[2], 0.5], 7),
-                simplex4_stochastic([p[0], p[1], p[2], 0.5], 7, xi),
+                Perlin::new(7).sample(p),
+                Perlin::new(7).estimate(p, xi),
+                Perlin::new(7).gradient(p).0,
+                Simplex::new(7).sample(p),
+                Simplex::new(7).estimate(p, xi),
+                Perlin::new(7).sample([p[0], p[1]]),
+                Perlin::new(7).estimate([p[0], p[1]], xi),
+                Simplex::new(7).sample([p[0], p[1]]),
+                Simplex::new(7).estimate([p[0], p[1]], xi),
+                Perlin::new(7).sample([p[0], p[1], p[2], 0.5]),
+                Perlin::new(7).estimate([p[0], p[1], p[2], 0.5], xi),
+                Simplex::new(7).sample([p[0], p[1], p[2], 0.5]),
+                Simplex::new(7).estimate([p[0], p[1], p[2], 0.5], xi),
             ];
             if finite3(p) {
                 for (i, v) in vals.iter().enumerate() {
@@ -97,25 +97,25 @@ fn fractal_and_cellular_noise_are_total() {
     for p in points3().step_by(3) {
         for &xi in &XI[..7] {
             for f in fractals {
-                let a = fbm3(p, f, 3);
-                let b = fbm3_stochastic(p, f, 3, xi);
+                let a = Fbm::new(f, 3).sample(p);
+                let b = Fbm::new(f, 3).estimate(p, xi);
                 if finite3(p) && f.lacunarity.is_finite() && f.gain.is_finite() {
                     assert!(!a.is_nan() && !b.is_nan(), "{p:?} {f:?} ξ {xi}: {a} {b}");
                 }
             }
-            let _ = sparse_conv3(p, 10, 1);
-            let _ = sparse_conv3_stochastic(p, 10, 1, xi);
-            let _ = sparse_conv3_stochastic1(p, 10, 1, xi);
-            let _ = sparse_conv3(p, u32::MAX, 1);
-            let _ = sparse_conv3_stochastic(p, 0, 1, xi);
-            let _ = fbm_sparse_conv3_stochastic(p, Fractal::default(), 10, 1, xi);
-            let _ = gabor3(p, Gabor::default(), 1);
-            let _ = gabor3_stochastic(p, Gabor::default(), 1, xi);
-            let w = worley3_f1(p, 1);
-            let s = smooth_voronoi3(p, 1);
-            let sv = smooth_voronoi3_stochastic(p, 1, 0.875, xi);
-            let _ = smooth_voronoi3_stochastic(p, 1, f32::NAN, xi);
-            let _ = smooth_voronoi3_stochastic(p, 1, 2.0, xi);
+            let _ = SparseConvolution::new(10, 1).sample(p);
+            let _ = SparseConvolution::new(10, 1).estimate(p, xi);
+            let _ = SparseConvolution::new(10, 1).estimate_one_term(p, xi);
+            let _ = SparseConvolution::new(u32::MAX, 1).sample(p);
+            let _ = SparseConvolution::new(0, 1).estimate(p, xi);
+            let _ = SparseConvolutionFbm::new(Fractal::default(), 10, 1).estimate(p, xi);
+            let _ = gabor(1).sample(p);
+            let _ = gabor(1).estimate(p, xi);
+            let w = Worley::new(1).f1(p);
+            let s = SmoothVoronoi::new(1).sample(p);
+            let sv = SmoothVoronoi::new(1).estimate_with(p, 0.875, xi);
+            let _ = SmoothVoronoi::new(1).estimate_with(p, f32::NAN, xi);
+            let _ = SmoothVoronoi::new(1).estimate_with(p, 2.0, xi);
             if finite3(p) {
                 assert!(w.is_finite() && s.is_finite() && sv.is_finite(), "{p:?}");
             }
@@ -128,13 +128,13 @@ fn batch_forms_match_single_points_on_extremes() {
     let pts: Vec<[f32; 3]> = points3().collect();
     let xis: Vec<f32> = (0..pts.len()).map(|i| XI[i % XI.len()]).collect();
     let mut out = vec![0.0; pts.len()];
-    perlin3_batch(&pts, 5, &mut out);
+    Perlin::new(5).sample_batch(&pts, &mut out);
     for (p, o) in pts.iter().zip(&out) {
-        assert_eq!(o.to_bits(), perlin3(*p, 5).to_bits(), "{p:?}");
+        assert_eq!(o.to_bits(), Perlin::new(5).sample(*p).to_bits(), "{p:?}");
     }
-    perlin3_stochastic_batch(&pts, 5, &xis, &mut out);
+    Perlin::new(5).estimate_batch(&pts, &xis, &mut out);
     for ((p, x), o) in pts.iter().zip(&xis).zip(&out) {
-        let want = perlin3_stochastic(*p, 5, *x);
+        let want = Perlin::new(5).estimate(*p, *x);
         assert!(
             o.to_bits() == want.to_bits() || (o.is_nan() && want.is_nan()),
             "{p:?} ξ {x}: {o} vs {want}"
@@ -357,15 +357,15 @@ mod arbitrary_bits {
         ) {
             let p = [x, y, z];
             let vals = [
-                perlin3(p, seed),
-                perlin3_stochastic(p, seed, xi),
-                simplex3(p, seed),
-                fbm3(p, Fractal::default(), seed),
-                fbm3_stochastic(p, Fractal::default(), seed, xi),
-                worley3_f1(p, seed),
-                smooth_voronoi3_stochastic(p, seed, 0.875, xi),
-                sparse_conv3_stochastic(p, 10, seed, xi),
-                gabor3_stochastic(p, Gabor::default(), seed, xi),
+                Perlin::new(seed).sample(p),
+                Perlin::new(seed).estimate(p, xi),
+                Simplex::new(seed).sample(p),
+                Fbm::new(Fractal::default(), seed).sample(p),
+                Fbm::new(Fractal::default(), seed).estimate(p, xi),
+                Worley::new(seed).f1(p),
+                SmoothVoronoi::new(seed).estimate_with(p, 0.875, xi),
+                SparseConvolution::new(10, seed).estimate(p, xi),
+                GaborNoise::new(Gabor::default(), seed).estimate(p, xi),
             ];
             if finite3(p) {
                 for v in vals {
@@ -373,8 +373,8 @@ mod arbitrary_bits {
                 }
             }
             let mut out = [0.0f32; 1];
-            fbm3_stochastic_batch(&[p], Fractal::default(), seed, &[xi], &mut out);
-            let single = fbm3_stochastic(p, Fractal::default(), seed, xi);
+            Fbm::new(Fractal::default(), seed).estimate_batch(&[p], &[xi], &mut out);
+            let single = Fbm::new(Fractal::default(), seed).estimate(p, xi);
             prop_assert!(out[0].to_bits() == single.to_bits() || (out[0].is_nan() && single.is_nan()));
         }
 
@@ -394,4 +394,13 @@ mod arbitrary_bits {
             prop_assert!(d.iter().all(|c| c.is_finite()));
         }
     }
+}
+
+/// Gabor noise with the default parameters, prepared once per seed (building the tables takes
+/// microseconds; the tests call it millions of times).
+fn gabor(seed: u32) -> &'static GaborNoise {
+    use std::sync::OnceLock;
+    static G: [OnceLock<GaborNoise>; 4] = [const { OnceLock::new() }; 4];
+    assert!((seed as usize) < G.len(), "seed {seed}: extend the table");
+    G[seed as usize].get_or_init(|| GaborNoise::new(Gabor::default(), seed))
 }

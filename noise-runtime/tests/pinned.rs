@@ -37,15 +37,23 @@ fn check(name: &str, got: Vec<u32>, want: &[u32]) {
 
 #[test]
 fn lattice_noise_is_pinned() {
-    check("perlin3", bits(P.map(|p| perlin3(p, 7))), &PERLIN3);
+    check(
+        "perlin3",
+        bits(P.map(|p| Perlin::new(7).sample(p))),
+        &PERLIN3,
+    );
     check(
         "fbm3",
-        bits(P.map(|p| fbm3(p, Fractal::default(), 7))),
+        bits(P.map(|p| Fbm::new(Fractal::default(), 7).sample(p))),
         &FBM3,
     );
     check(
         "perlin3_stochastic",
-        bits(P.iter().zip(XI).map(|(&p, x)| perlin3_stochastic(p, 7, x))),
+        bits(
+            P.iter()
+                .zip(XI)
+                .map(|(&p, x)| Perlin::new(7).estimate(p, x)),
+        ),
         &PERLIN3_STOCHASTIC,
     );
     check(
@@ -53,18 +61,26 @@ fn lattice_noise_is_pinned() {
         bits(
             P.iter()
                 .zip(XI)
-                .map(|(&p, x)| fbm3_stochastic(p, Fractal::default(), 7, x)),
+                .map(|(&p, x)| Fbm::new(Fractal::default(), 7).estimate(p, x)),
         ),
         &FBM3_STOCHASTIC,
     );
-    check("simplex3", bits(P.map(|p| simplex3(p, 7))), &SIMPLEX3);
-    check("worley3_f1", bits(P.map(|p| worley3_f1(p, 7))), &WORLEY3);
+    check(
+        "simplex3",
+        bits(P.map(|p| Simplex::new(7).sample(p))),
+        &SIMPLEX3,
+    );
+    check(
+        "worley3_f1",
+        bits(P.map(|p| Worley::new(7).f1(p))),
+        &WORLEY3,
+    );
     check(
         "sparse_conv3_stochastic",
         bits(
             P.iter()
                 .zip(XI)
-                .map(|(&p, x)| sparse_conv3_stochastic(p, 10, 7, x)),
+                .map(|(&p, x)| SparseConvolution::new(10, 7).estimate(p, x)),
         ),
         &SPARSE3_STOCHASTIC,
     );

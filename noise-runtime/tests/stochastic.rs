@@ -27,114 +27,114 @@ const FBM_SPARSE: Fractal = Fractal::new(4, 2.0, 0.5);
 
 /// The sparse convolution sums whose estimators are tested, each against two estimators.
 fn sparse(p: [f32; 3]) -> f32 {
-    sparse_conv3(p, 10, 3)
+    SparseConvolution::new(10, 3).sample(p)
 }
 
 fn fbm_sparse(p: [f32; 3]) -> f32 {
-    fbm_sparse_conv3(p, FBM_SPARSE, 6, 3)
+    SparseConvolutionFbm::new(FBM_SPARSE, 6, 3).sample(p)
 }
 
 fn pairs() -> Vec<Pair> {
     vec![
         (
             "perlin2",
-            |p| perlin2([p[0], p[1]], 3),
-            |p, x| perlin2_stochastic([p[0], p[1]], 3, x),
+            |p| Perlin::new(3).sample([p[0], p[1]]),
+            |p, x| Perlin::new(3).estimate([p[0], p[1]], x),
         ),
         (
             "perlin3",
-            |p| perlin3(p, 3),
-            |p, x| perlin3_stochastic(p, 3, x),
+            |p| Perlin::new(3).sample(p),
+            |p, x| Perlin::new(3).estimate(p, x),
         ),
         (
             "perlin4",
-            |p| perlin4([p[0], p[1], p[2], p[0] - p[1]], 3),
-            |p, x| perlin4_stochastic([p[0], p[1], p[2], p[0] - p[1]], 3, x),
+            |p| Perlin::new(3).sample([p[0], p[1], p[2], p[0] - p[1]]),
+            |p, x| Perlin::new(3).estimate([p[0], p[1], p[2], p[0] - p[1]], x),
         ),
         (
             "simplex2",
-            |p| simplex2([p[0], p[1]], 3),
-            |p, x| simplex2_stochastic([p[0], p[1]], 3, x),
+            |p| Simplex::new(3).sample([p[0], p[1]]),
+            |p, x| Simplex::new(3).estimate([p[0], p[1]], x),
         ),
         (
             "simplex3",
-            |p| simplex3(p, 3),
-            |p, x| simplex3_stochastic(p, 3, x),
+            |p| Simplex::new(3).sample(p),
+            |p, x| Simplex::new(3).estimate(p, x),
         ),
         (
             "simplex4",
-            |p| simplex4([p[0], p[1], p[2], p[0] - p[1]], 3),
-            |p, x| simplex4_stochastic([p[0], p[1], p[2], p[0] - p[1]], 3, x),
+            |p| Simplex::new(3).sample([p[0], p[1], p[2], p[0] - p[1]]),
+            |p, x| Simplex::new(3).estimate([p[0], p[1], p[2], p[0] - p[1]], x),
         ),
         (
             "fbm3",
-            |p| fbm3(p, Fractal::new(6, 2.0, 0.5), 3),
-            |p, x| fbm3_stochastic(p, Fractal::new(6, 2.0, 0.5), 3, x),
+            |p| Fbm::new(Fractal::new(6, 2.0, 0.5), 3).sample(p),
+            |p, x| Fbm::new(Fractal::new(6, 2.0, 0.5), 3).estimate(p, x),
         ),
         // The octave choice by a table of the CDF (any lacunarity and gain), and the
         // exponent-bit form with a negative gain (alternating signs).
         (
             "fbm3 (lacunarity 1.93, gain 0.6)",
-            |p| fbm3(p, Fractal::new(5, 1.93, 0.6), 3),
-            |p, x| fbm3_stochastic(p, Fractal::new(5, 1.93, 0.6), 3, x),
+            |p| Fbm::new(Fractal::new(5, 1.93, 0.6), 3).sample(p),
+            |p, x| Fbm::new(Fractal::new(5, 1.93, 0.6), 3).estimate(p, x),
         ),
         (
             "fbm3 (gain -0.5)",
-            |p| fbm3(p, Fractal::new(5, 2.0, -0.5), 3),
-            |p, x| fbm3_stochastic(p, Fractal::new(5, 2.0, -0.5), 3, x),
+            |p| Fbm::new(Fractal::new(5, 2.0, -0.5), 3).sample(p),
+            |p, x| Fbm::new(Fractal::new(5, 2.0, -0.5), 3).estimate(p, x),
         ),
         // Exact top octaves and one sampled octave of the rest (the renderer's variant), with
         // one, two and all-but-one exact octaves, and a general lacunarity and negative gain.
         (
             "fbm3 tail (1 exact)",
-            |p| fbm3(p, Fractal::new(6, 2.0, 0.5), 3),
-            |p, x| fbm3_tail_stochastic(p, Fractal::new(6, 2.0, 0.5), 1, 3, x),
+            |p| Fbm::new(Fractal::new(6, 2.0, 0.5), 3).sample(p),
+            |p, x| Fbm::new(Fractal::new(6, 2.0, 0.5), 3).estimate_tail(p, 1, x),
         ),
         (
             "fbm3 tail (2 exact, gain -0.5)",
-            |p| fbm3(p, Fractal::new(6, 2.0, -0.5), 3),
-            |p, x| fbm3_tail_stochastic(p, Fractal::new(6, 2.0, -0.5), 2, 3, x),
+            |p| Fbm::new(Fractal::new(6, 2.0, -0.5), 3).sample(p),
+            |p, x| Fbm::new(Fractal::new(6, 2.0, -0.5), 3).estimate_tail(p, 2, x),
         ),
         (
             "fbm3 tail (4 exact, lacunarity 1.93, gain 0.6)",
-            |p| fbm3(p, Fractal::new(5, 1.93, 0.6), 3),
-            |p, x| fbm3_tail_stochastic(p, Fractal::new(5, 1.93, 0.6), 4, 3, x),
+            |p| Fbm::new(Fractal::new(5, 1.93, 0.6), 3).sample(p),
+            |p, x| Fbm::new(Fractal::new(5, 1.93, 0.6), 3).estimate_tail(p, 4, x),
         ),
         (
             "fbm3 octave (1 exact)",
-            |p| fbm3(p, Fractal::new(6, 2.0, 0.5), 3),
-            |p, x| fbm3_octave_stochastic(p, Fractal::new(6, 2.0, 0.5), 1, 3, x),
+            |p| Fbm::new(Fractal::new(6, 2.0, 0.5), 3).sample(p),
+            |p, x| Fbm::new(Fractal::new(6, 2.0, 0.5), 3).estimate_octave(p, 1, x),
         ),
         (
             "fbm3 octave (0 exact, gain -0.5)",
-            |p| fbm3(p, Fractal::new(6, 2.0, -0.5), 3),
-            |p, x| fbm3_octave_stochastic(p, Fractal::new(6, 2.0, -0.5), 0, 3, x),
+            |p| Fbm::new(Fractal::new(6, 2.0, -0.5), 3).sample(p),
+            |p, x| Fbm::new(Fractal::new(6, 2.0, -0.5), 3).estimate_octave(p, 0, x),
         ),
         ("fbm_sparse_conv3 tail (2 exact)", fbm_sparse, |p, x| {
-            fbm_sparse_conv3_tail_stochastic(p, FBM_SPARSE, 2, 6, 3, x)
+            SparseConvolutionFbm::new(FBM_SPARSE, 6, 3).estimate_tail(p, 2, x)
         }),
         ("sparse_conv3", sparse, |p, x| {
-            sparse_conv3_stochastic(p, 10, 3, x)
+            SparseConvolution::new(10, 3).estimate(p, x)
         }),
         ("fbm_sparse_conv3", fbm_sparse, |p, x| {
-            fbm_sparse_conv3_stochastic(p, FBM_SPARSE, 6, 3, x)
+            SparseConvolutionFbm::new(FBM_SPARSE, 6, 3).estimate(p, x)
         }),
         // The one-term estimators of the same two sums.
         ("sparse_conv3 one-term", sparse, |p, x| {
-            sparse_conv3_stochastic1(p, 10, 3, x)
+            SparseConvolution::new(10, 3).estimate_one_term(p, x)
         }),
         ("fbm_sparse_conv3 one-term", fbm_sparse, |p, x| {
-            fbm_sparse_conv3_stochastic1(p, FBM_SPARSE, 6, 3, x)
+            SparseConvolutionFbm::new(FBM_SPARSE, 6, 3).estimate_one_term(p, x)
         }),
         (
             "gabor3",
-            |p| gabor3(p, Gabor::default(), 3),
-            |p, x| gabor3_stochastic(p, Gabor::default(), 3, x),
+            |p| gabor(3).sample(p),
+            |p, x| gabor(3).estimate(p, x),
         ),
         (
             "voronoi3",
-            |p| smooth_voronoi3(p, 3),
-            |p, x| smooth_voronoi3_stochastic(p, 3, SMOOTH_VORONOI_Q, x),
+            |p| SmoothVoronoi::new(3).sample(p),
+            |p, x| SmoothVoronoi::new(3).estimate_with(p, SMOOTH_VORONOI_Q, x),
         ),
     ]
 }
@@ -238,23 +238,23 @@ fn perlin_gradient_matches_finite_differences() {
     let mut rng = Rng(9);
     for _ in 0..200 {
         let p = [rng.unit() * 10.0, rng.unit() * 10.0, rng.unit() * 10.0];
-        let (v, g) = perlin3_grad(p, 1);
-        assert!((v - perlin3(p, 1)).abs() < 1e-5);
+        let (v, g) = Perlin::new(1).gradient(p);
+        assert!((v - Perlin::new(1).sample(p)).abs() < 1e-5);
         let h = 1e-2f32;
         for a in 0..3 {
             let (mut lo, mut hi) = (p, p);
             lo[a] -= h;
             hi[a] += h;
-            let fd = (perlin3(hi, 1) - perlin3(lo, 1)) / (2.0 * h);
+            let fd = (Perlin::new(1).sample(hi) - Perlin::new(1).sample(lo)) / (2.0 * h);
             assert!((fd - g[a]).abs() < 0.02, "axis {a}: fd {fd} vs {}", g[a]);
         }
-        let (v2, g2) = perlin2_grad([p[0], p[1]], 1);
-        assert!((v2 - perlin2([p[0], p[1]], 1)).abs() < 1e-5);
+        let (v2, g2) = Perlin::new(1).gradient([p[0], p[1]]);
+        assert!((v2 - Perlin::new(1).sample([p[0], p[1]])).abs() < 1e-5);
         for a in 0..2 {
             let (mut lo, mut hi) = ([p[0], p[1]], [p[0], p[1]]);
             lo[a] -= h;
             hi[a] += h;
-            let fd = (perlin2(hi, 1) - perlin2(lo, 1)) / (2.0 * h);
+            let fd = (Perlin::new(1).sample(hi) - Perlin::new(1).sample(lo)) / (2.0 * h);
             assert!(
                 (fd - g2[a]).abs() < 0.02,
                 "2D axis {a}: fd {fd} vs {}",
@@ -262,17 +262,17 @@ fn perlin_gradient_matches_finite_differences() {
             );
         }
         let p4 = [p[0], p[1], p[2], rng.unit() * 10.0 - 5.0];
-        let (v4, g4) = perlin4_grad(p4, 1);
+        let (v4, g4) = Perlin::new(1).gradient(p4);
         assert!(
-            (v4 - perlin4(p4, 1)).abs() < 1e-5,
+            (v4 - Perlin::new(1).sample(p4)).abs() < 1e-5,
             "{v4} vs {}",
-            perlin4(p4, 1)
+            Perlin::new(1).sample(p4)
         );
         for a in 0..4 {
             let (mut lo, mut hi) = (p4, p4);
             lo[a] -= h;
             hi[a] += h;
-            let fd = (perlin4(hi, 1) - perlin4(lo, 1)) / (2.0 * h);
+            let fd = (Perlin::new(1).sample(hi) - Perlin::new(1).sample(lo)) / (2.0 * h);
             assert!(
                 (fd - g4[a]).abs() < 0.02,
                 "4D axis {a}: fd {fd} vs {}",
@@ -317,16 +317,21 @@ fn simplex_gradient_matches_finite_differences() {
         check(
             "simplex2",
             [p[0], p[1]],
-            |q| simplex2(q, 1),
-            |q| simplex2_grad(q, 1),
+            |q| Simplex::new(1).sample(q),
+            |q| Simplex::new(1).gradient(q),
         );
         check(
             "simplex3",
             [p[0], p[1], p[2]],
-            |q| simplex3(q, 1),
-            |q| simplex3_grad(q, 1),
+            |q| Simplex::new(1).sample(q),
+            |q| Simplex::new(1).gradient(q),
         );
-        check("simplex4", p, |q| simplex4(q, 1), |q| simplex4_grad(q, 1));
+        check(
+            "simplex4",
+            p,
+            |q| Simplex::new(1).sample(q),
+            |q| Simplex::new(1).gradient(q),
+        );
     }
 }
 
@@ -346,7 +351,7 @@ fn worley_f1_is_the_true_nearest_point() {
             for dy in -2..=2 {
                 for dx in -2..=2 {
                     let cell = [c[0] + dx, c[1] + dy, c[2] + dz];
-                    let q = feature_point3(cell, 7);
+                    let q = Worley::new(7).feature_point(cell);
                     let d: f32 = (0..3)
                         .map(|a| {
                             let t = p[a] - (cell[a] as f32 + q[a]);
@@ -357,7 +362,7 @@ fn worley_f1_is_the_true_nearest_point() {
                 }
             }
         }
-        assert!((worley3_f1(p, 7) - best).abs() < 2e-5, "{p:?}");
+        assert!((Worley::new(7).f1(p) - best).abs() < 2e-5, "{p:?}");
     }
 }
 
@@ -377,7 +382,7 @@ fn smooth_voronoi_is_eq_12_within_3e7() {
             for dy in -1..=1 {
                 for dx in -1..=1 {
                     let cell = [c[0] + dx, c[1] + dy, c[2] + dz];
-                    let q = feature_point3(cell, 5);
+                    let q = Worley::new(5).feature_point(cell);
                     let d2: f64 = (0..3)
                         .map(|a| (p[a] as f64 - (cell[a] as f64 + q[a] as f64)).powi(2))
                         .sum();
@@ -385,7 +390,7 @@ fn smooth_voronoi_is_eq_12_within_3e7() {
                 }
             }
         }
-        let err = (smooth_voronoi3(p, 5) as f64 + sum.ln() / 32.0).abs();
+        let err = (SmoothVoronoi::new(5).sample(p) as f64 + sum.ln() / 32.0).abs();
         assert!(err < 3e-7, "{p:?}: error {err:e}");
         worst = worst.max(err);
     }
@@ -438,43 +443,43 @@ fn hard_cases_are_finite() {
         let p = [c, -c * 0.5, 0.25];
         for &x in &hard_xis() {
             let mut vals = vec![
-                perlin2([c, 0.3], 1),
-                perlin2_stochastic([c, 0.3], 1, x),
-                perlin3(p, 1),
-                perlin3_grad(p, 1).0,
-                perlin3_stochastic(p, 1, x),
-                perlin4([c, 1.5, c, 0.2], 1),
-                perlin4_stochastic([c, 1.5, c, 0.2], 1, x),
-                perlin4_grad([c, 1.5, c, 0.2], 1).0,
-                simplex2([c, 0.3], 1),
-                simplex2_stochastic([c, 0.3], 1, x),
-                simplex2_grad([c, 0.3], 1).0,
-                simplex3(p, 1),
-                simplex3_stochastic(p, 1, x),
-                simplex3_grad(p, 1).0,
-                simplex4([c, 1.5, c, 0.2], 1),
-                simplex4_stochastic([c, 1.5, c, 0.2], 1, x),
-                simplex4_grad([c, 1.5, c, 0.2], 1).0,
-                sparse_conv3(p, 10, 1),
-                sparse_conv3_stochastic(p, 10, 1, x),
-                sparse_conv3_stochastic1(p, 10, 1, x),
-                gabor3(p, Gabor::default(), 1),
-                gabor3_stochastic(p, Gabor::default(), 1, x),
-                smooth_voronoi3(p, 1),
-                smooth_voronoi3_stochastic(p, 1, SMOOTH_VORONOI_Q, x),
-                smooth_voronoi3_stochastic(p, 1, 1.0, x),
-                worley3_f1(p, 1),
+                Perlin::new(1).sample([c, 0.3]),
+                Perlin::new(1).estimate([c, 0.3], x),
+                Perlin::new(1).sample(p),
+                Perlin::new(1).gradient(p).0,
+                Perlin::new(1).estimate(p, x),
+                Perlin::new(1).sample([c, 1.5, c, 0.2]),
+                Perlin::new(1).estimate([c, 1.5, c, 0.2], x),
+                Perlin::new(1).gradient([c, 1.5, c, 0.2]).0,
+                Simplex::new(1).sample([c, 0.3]),
+                Simplex::new(1).estimate([c, 0.3], x),
+                Simplex::new(1).gradient([c, 0.3]).0,
+                Simplex::new(1).sample(p),
+                Simplex::new(1).estimate(p, x),
+                Simplex::new(1).gradient(p).0,
+                Simplex::new(1).sample([c, 1.5, c, 0.2]),
+                Simplex::new(1).estimate([c, 1.5, c, 0.2], x),
+                Simplex::new(1).gradient([c, 1.5, c, 0.2]).0,
+                SparseConvolution::new(10, 1).sample(p),
+                SparseConvolution::new(10, 1).estimate(p, x),
+                SparseConvolution::new(10, 1).estimate_one_term(p, x),
+                gabor(1).sample(p),
+                gabor(1).estimate(p, x),
+                SmoothVoronoi::new(1).sample(p),
+                SmoothVoronoi::new(1).estimate_with(p, SMOOTH_VORONOI_Q, x),
+                SmoothVoronoi::new(1).estimate_with(p, 1.0, x),
+                Worley::new(1).f1(p),
             ];
-            vals.extend(perlin3_grad(p, 1).1);
-            vals.extend(perlin4_grad([c, 1.5, c, 0.2], 1).1);
-            vals.extend(simplex2_grad([c, 0.3], 1).1);
-            vals.extend(simplex3_grad(p, 1).1);
-            vals.extend(simplex4_grad([c, 1.5, c, 0.2], 1).1);
+            vals.extend(Perlin::new(1).gradient(p).1);
+            vals.extend(Perlin::new(1).gradient([c, 1.5, c, 0.2]).1);
+            vals.extend(Simplex::new(1).gradient([c, 0.3]).1);
+            vals.extend(Simplex::new(1).gradient(p).1);
+            vals.extend(Simplex::new(1).gradient([c, 1.5, c, 0.2]).1);
             for f in fracs {
-                vals.push(fbm3(p, f, 1));
-                vals.push(fbm3_stochastic(p, f, 1, x));
-                vals.push(fbm_sparse_conv3(p, f, 4, 1));
-                vals.push(fbm_sparse_conv3_stochastic(p, f, 4, 1, x));
+                vals.push(Fbm::new(f, 1).sample(p));
+                vals.push(Fbm::new(f, 1).estimate(p, x));
+                vals.push(SparseConvolutionFbm::new(f, 4, 1).sample(p));
+                vals.push(SparseConvolutionFbm::new(f, 4, 1).estimate(p, x));
             }
             for (i, v) in vals.iter().enumerate() {
                 assert!(v.is_finite(), "value {i} at coord {c}, ξ {x}: {v}");
@@ -490,13 +495,13 @@ fn fbm_with_gain_one_samples_octaves_uniformly() {
     let p = [0.3, 1.7, -2.2];
     let n = 1 << 15;
     let m: f64 = (0..n)
-        .map(|i| fbm3_stochastic(p, f, 5, (i as f32 + 0.5) / n as f32) as f64)
+        .map(|i| Fbm::new(f, 5).estimate(p, (i as f32 + 0.5) / n as f32) as f64)
         .sum::<f64>()
         / n as f64;
     assert!(
-        (m - fbm3(p, f, 5) as f64).abs() < 2e-3,
+        (m - Fbm::new(f, 5).sample(p) as f64).abs() < 2e-3,
         "{m} vs {}",
-        fbm3(p, f, 5)
+        Fbm::new(f, 5).sample(p)
     );
 }
 
@@ -509,16 +514,16 @@ proptest! {
         let p = [x, y, z];
         let f = Fractal::new(oct, lac, gain);
         for v in [
-            perlin3_stochastic(p, 2, xi),
-            simplex2_stochastic([x, y], 2, xi),
-            simplex3_stochastic(p, 2, xi),
-            simplex4_stochastic([x, y, z, x - z], 2, xi),
-            fbm3(p, f, 2),
-            fbm3_stochastic(p, f, 2, xi),
-            fbm_sparse_conv3_stochastic(p, f, 3, 2, xi),
-            fbm_sparse_conv3_stochastic1(p, f, 3, 2, xi),
-            smooth_voronoi3_stochastic(p, 2, SMOOTH_VORONOI_Q, xi),
-            gabor3_stochastic(p, Gabor::default(), 2, xi),
+            Perlin::new(2).estimate(p, xi),
+            Simplex::new(2).estimate([x, y], xi),
+            Simplex::new(2).estimate(p, xi),
+            Simplex::new(2).estimate([x, y, z, x - z], xi),
+            Fbm::new(f, 2).sample(p),
+            Fbm::new(f, 2).estimate(p, xi),
+            SparseConvolutionFbm::new(f, 3, 2).estimate(p, xi),
+            SparseConvolutionFbm::new(f, 3, 2).estimate_one_term(p, xi),
+            SmoothVoronoi::new(2).estimate_with(p, SMOOTH_VORONOI_Q, xi),
+            gabor(2).estimate(p, xi),
         ] {
             prop_assert!(v.is_finite());
         }
@@ -544,13 +549,22 @@ proptest! {
         let check = |got: &[f32], want: &dyn Fn(usize) -> f32| {
             got.iter().enumerate().all(|(i, g)| g.to_bits() == want(i).to_bits())
         };
-        prop_assert_eq!(perlin3_batch(&pts, seed, &mut out), n);
-        prop_assert!(check(&out, &|i| perlin3(pts[i], seed)));
-        prop_assert_eq!(perlin3_stochastic_batch(&pts, seed, &xi, &mut out), n);
-        prop_assert!(check(&out, &|i| perlin3_stochastic(pts[i], seed, xi[i])));
-        prop_assert_eq!(fbm3_batch(&pts, f, seed, &mut out), n);
-        prop_assert!(check(&out, &|i| fbm3(pts[i], f, seed)));
-        prop_assert_eq!(fbm3_stochastic_batch(&pts, f, seed, &xi, &mut out), n);
-        prop_assert!(check(&out, &|i| fbm3_stochastic(pts[i], f, seed, xi[i])));
+        prop_assert_eq!(Perlin::new(seed).sample_batch(&pts, &mut out), n);
+        prop_assert!(check(&out, &|i| Perlin::new(seed).sample(pts[i])));
+        prop_assert_eq!(Perlin::new(seed).estimate_batch(&pts, &xi, &mut out), n);
+        prop_assert!(check(&out, &|i| Perlin::new(seed).estimate(pts[i], xi[i])));
+        prop_assert_eq!(Fbm::new(f, seed).sample_batch(&pts, &mut out), n);
+        prop_assert!(check(&out, &|i| Fbm::new(f, seed).sample(pts[i])));
+        prop_assert_eq!(Fbm::new(f, seed).estimate_batch(&pts, &xi, &mut out), n);
+        prop_assert!(check(&out, &|i| Fbm::new(f, seed).estimate(pts[i], xi[i])));
     }
+}
+
+/// Gabor noise with the default parameters, prepared once per seed (building the tables takes
+/// microseconds; the tests call it millions of times).
+fn gabor(seed: u32) -> &'static GaborNoise {
+    use std::sync::OnceLock;
+    static G: [OnceLock<GaborNoise>; 4] = [const { OnceLock::new() }; 4];
+    assert!((seed as usize) < G.len(), "seed {seed}: extend the table");
+    G[seed as usize].get_or_init(|| GaborNoise::new(Gabor::default(), seed))
 }

@@ -66,82 +66,66 @@ fn noise(c: &mut Criterion) {
     g.sample_size(10)
         .measurement_time(Duration::from_secs(2))
         .warm_up_time(Duration::from_millis(500));
-    bench!(g, "perlin3/deterministic", pts, xis, |p, _x| perlin3(p, 1));
-    bench!(
-        g,
-        "perlin3/stochastic",
-        pts,
-        xis,
-        |p, x| perlin3_stochastic(p, 1, x)
-    );
-    bench!(g, "simplex2/deterministic", pts, xis, |p, _x| simplex2(
-        [p[0], p[1]],
+    bench!(g, "perlin3/deterministic", pts, xis, |p, _x| Perlin::new(1)
+        .sample(p));
+    bench!(g, "perlin3/stochastic", pts, xis, |p, x| Perlin::new(1)
+        .estimate(p, x));
+    bench!(g, "simplex2/deterministic", pts, xis, |p, _x| Simplex::new(
         1
-    ));
+    )
+    .sample([p[0], p[1]]));
     bench!(g, "simplex2/stochastic", pts, xis, |p, x| {
-        simplex2_stochastic([p[0], p[1]], 1, x)
+        Simplex::new(1).estimate([p[0], p[1]], x)
     });
-    bench!(g, "simplex3/deterministic", pts, xis, |p, _x| simplex3(
-        p, 1
-    ));
-    bench!(g, "simplex3/stochastic", pts, xis, |p, x| {
-        simplex3_stochastic(p, 1, x)
-    });
-    bench!(g, "simplex4/deterministic", pts, xis, |p, _x| simplex4(
-        [p[0], p[1], p[2], p[0] + p[2]],
+    bench!(g, "simplex3/deterministic", pts, xis, |p, _x| Simplex::new(
         1
-    ));
-    bench!(g, "simplex4/stochastic", pts, xis, |p, x| {
-        simplex4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x)
+    )
+    .sample(p));
+    bench!(g, "simplex3/stochastic", pts, xis, |p, x| {
+        Simplex::new(1).estimate(p, x)
     });
-    bench!(g, "fbm3/deterministic", pts, xis, |p, _x| fbm3(p, f10, 1));
-    bench!(g, "fbm3/stochastic", pts, xis, |p, x| fbm3_stochastic(
-        p, f10, 1, x
-    ));
+    bench!(g, "simplex4/deterministic", pts, xis, |p, _x| Simplex::new(
+        1
+    )
+    .sample([p[0], p[1], p[2], p[0] + p[2]]));
+    bench!(g, "simplex4/stochastic", pts, xis, |p, x| {
+        Simplex::new(1).estimate([p[0], p[1], p[2], p[0] + p[2]], x)
+    });
+    bench!(g, "fbm3/deterministic", pts, xis, |p, _x| Fbm::new(f10, 1)
+        .sample(p));
+    bench!(g, "fbm3/stochastic", pts, xis, |p, x| Fbm::new(f10, 1)
+        .estimate(p, x));
     bench!(g, "sparse_conv3/deterministic", pts, xis, |p, _x| {
-        sparse_conv3(p, 10, 1)
+        SparseConvolution::new(10, 1).sample(p)
     });
     bench!(g, "sparse_conv3/stochastic", pts, xis, |p, x| {
-        sparse_conv3_stochastic(p, 10, 1, x)
+        SparseConvolution::new(10, 1).estimate(p, x)
     });
     bench!(g, "sparse_conv3/stochastic-1term", pts, xis, |p, x| {
-        sparse_conv3_stochastic1(p, 10, 1, x)
+        SparseConvolution::new(10, 1).estimate_one_term(p, x)
     });
     bench!(g, "fbm_sparse_conv3/deterministic", pts, xis, |p, _x| {
-        fbm_sparse_conv3(p, f10, 10, 1)
+        SparseConvolutionFbm::new(f10, 10, 1).sample(p)
     });
     bench!(g, "fbm_sparse_conv3/stochastic", pts, xis, |p, x| {
-        fbm_sparse_conv3_stochastic(p, f10, 10, 1, x)
+        SparseConvolutionFbm::new(f10, 10, 1).estimate(p, x)
     });
     bench!(g, "fbm_sparse_conv3/stochastic-1term", pts, xis, |p, x| {
-        fbm_sparse_conv3_stochastic1(p, f10, 10, 1, x)
+        SparseConvolutionFbm::new(f10, 10, 1).estimate_one_term(p, x)
     });
-    // Gabor noise as a renderer keeps it: parameters prepared once (`GaborNoise`). The free
-    // functions build the Poisson tables on every call; they are timed too.
-    let gabor = GaborNoise::new(Gabor::default());
-    bench!(g, "gabor3/deterministic", pts, xis, |p, _x| gabor
-        .sample(p, 1));
+    // Gabor noise as a renderer keeps it: parameters prepared once (`GaborNoise`).
+    let gabor = GaborNoise::new(Gabor::default(), 1);
+    bench!(g, "gabor3/deterministic", pts, xis, |p, _x| gabor.sample(p));
     bench!(g, "gabor3/stochastic", pts, xis, |p, x| gabor
-        .sample_stochastic(p, 1, x));
-    bench!(
-        g,
-        "gabor3/deterministic-per-call",
-        pts,
-        xis,
-        |p, _x| gabor3(p, Gabor::default(), 1)
-    );
-    bench!(g, "gabor3/stochastic-per-call", pts, xis, |p, x| {
-        gabor3_stochastic(p, Gabor::default(), 1, x)
-    });
+        .estimate(p, x));
     bench!(g, "voronoi3/deterministic", pts, xis, |p, _x| {
-        smooth_voronoi3(p, 1)
+        SmoothVoronoi::new(1).sample(p)
     });
     bench!(g, "voronoi3/stochastic", pts, xis, |p, x| {
-        smooth_voronoi3_stochastic(p, 1, SMOOTH_VORONOI_Q, x)
+        SmoothVoronoi::new(1).estimate_with(p, SMOOTH_VORONOI_Q, x)
     });
-    bench!(g, "worley3/deterministic", pts, xis, |p, _x| worley3_f1(
-        p, 1
-    ));
+    bench!(g, "worley3/deterministic", pts, xis, |p, _x| Worley::new(1)
+        .f1(p));
     // The batch forms over all N points in one call (eight per instruction on AVX2).
     let mut out = vec![0.0f32; N];
     macro_rules! batch {
@@ -155,17 +139,15 @@ fn noise(c: &mut Criterion) {
             });
         };
     }
-    batch!("perlin3/deterministic-batch", |p, _x, o| perlin3_batch(
-        p, 1, o
-    ));
+    batch!("perlin3/deterministic-batch", |p, _x, o| Perlin::new(1)
+        .sample_batch(p, o));
     batch!("perlin3/stochastic-batch", |p, x, o| {
-        perlin3_stochastic_batch(p, 1, x, o)
+        Perlin::new(1).estimate_batch(p, x, o)
     });
-    batch!("fbm3/deterministic-batch", |p, _x, o| fbm3_batch(
-        p, f10, 1, o
-    ));
+    batch!("fbm3/deterministic-batch", |p, _x, o| Fbm::new(f10, 1)
+        .sample_batch(p, o));
     batch!("fbm3/stochastic-batch", |p, x, o| {
-        fbm3_stochastic_batch(p, f10, 1, x, o)
+        Fbm::new(f10, 1).estimate_batch(p, x, o)
     });
     {
         use noise_functions::{CellDistance, Noise, Perlin};

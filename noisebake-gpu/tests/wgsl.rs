@@ -344,14 +344,14 @@ fn gradient_noise_matches_within_tolerance() {
     for (i, &[x, y, z, xi]) in inputs.iter().enumerate() {
         let p = [x, y, z];
         let mut cpu = vec![
-            stochastic::perlin3(p, 7),
-            stochastic::perlin3_stochastic(p, 7, xi),
+            stochastic::Perlin::new(7).sample(p),
+            stochastic::Perlin::new(7).estimate(p, xi),
         ];
         let mut tol = vec![2f64.powi(-16), 0.0];
         for &(o, l, gain) in &FRACTALS {
             let f = Fractal::new(o, l, gain);
-            cpu.push(stochastic::fbm3(p, f, 7));
-            cpu.push(stochastic::fbm3_stochastic(p, f, 7, xi));
+            cpu.push(stochastic::Fbm::new(f, 7).sample(p));
+            cpu.push(stochastic::Fbm::new(f, 7).estimate(p, xi));
             let weight: f64 = (0..o).map(|k| (gain.abs() as f64).powi(k as i32)).sum();
             tol.push(weight * 2f64.powi(-16));
             tol.push(0.0);

@@ -15,14 +15,11 @@ pub fn use_everything(x: i32, y: i32, frame: u32) -> f32 {
     let frac = |v: f32| noisebake::math::fract_f64(v as f64) as f32;
     let d = noisebake::warp::cosine_hemisphere(frac(m), frac(g));
     let s = noisebake::sequence::to_unit(noisebake::sequence::golden(frame));
-    let st = noisebake::stochastic::fbm3_stochastic(
-        [g, m, s],
-        noisebake::stochastic::Fractal::default(),
-        1,
-        frac(m),
-    ) + noisebake::stochastic::smooth_voronoi3([g, m, s], 2);
+    use noisebake::stochastic::{Fbm, Fractal, Perlin, SmoothVoronoi};
+    let st = Fbm::new(Fractal::default(), 1).estimate([g, m, s], frac(m))
+        + SmoothVoronoi::new(2).sample([g, m, s]);
     // The batch forms (AVX2 detection without std).
     let mut out = [0.0f32; 9];
-    noisebake::stochastic::perlin3_stochastic_batch(&[[g, m, s]; 9], 1, &[frac(m); 9], &mut out);
+    Perlin::new(1).estimate_batch(&[[g, m, s]; 9], &[frac(m); 9], &mut out);
     m + g + d[2] + s + st + out[8] + noisebake::math::sqrt(2.0)
 }

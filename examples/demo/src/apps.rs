@@ -2,7 +2,7 @@
 //! direction) per pixel and frame from a [`Noise`] source.
 
 use crate::noises::Noise;
-use noisebake::stochastic::{Fractal, fbm3};
+use noisebake::stochastic::{Fbm, Fractal};
 
 /// One application: a reference image and a noisy per-frame estimate of it.
 pub trait App: Sync {
@@ -144,7 +144,7 @@ impl Volume {
                 z as f32 / G as f32,
             ];
             let r2 = (p[0] - 0.5).powi(2) + (p[1] - 0.5).powi(2) + (p[2] - 0.5).powi(2);
-            let n = fbm3([p[0] * 4.0, p[1] * 4.0, p[2] * 4.0], f, 11);
+            let n = Fbm::new(f, 11).sample([p[0] * 4.0, p[1] * 4.0, p[2] * 4.0]);
             *d = (12.0 * (n + 0.35 - 2.2 * r2)).max(0.0);
         }
         // Transmittance to a light at −y (top of the image), marched once per column.

@@ -1,7 +1,7 @@
 //! Stochastic noise where it is meant to pay (Fajardo & Pharr §7.2, Tables 2–3): inside Monte
 //! Carlo renderers that already draw many random numbers per pixel, with the noise evaluated
 //! deterministically or by one-sample estimators, compared at equal time
-//! ([`equal_time`](crate::equal_time)).
+//! (the [`equal_time`](mod@crate::equal_time) module).
 //!
 //! Three scenes:
 //! - **`cloud`** (the demo's panel): a 64×64 cloud of 8-octave Perlin fBm density, single
@@ -11,12 +11,12 @@
 //!   is unbiased), multiple scattering, 10 octaves of Perlin or sparse-convolution fBm, with a
 //!   strict majorant (a bound on the deterministic density) and an optimised one (half of it,
 //!   which the null-scattering weights tolerate).
-//! - **`material`** ([`material`](crate::material)): a plane with a procedural fBm albedo seen in
+//! - **`material`** (the [`material`](mod@crate::material) module): a plane with a procedural fBm albedo seen in
 //!   perspective, one sample per pixel and frame (ξ from the baked STBN), accumulated over frames.
 //!
 //! Density variants ([`Variant`]): the full deterministic fBm; the one-sample estimator of the
 //! whole sum (Algorithm 2); the *tail* estimator (the largest octaves exact, one octave of the
-//! rest sampled: `fbm3_tail_stochastic`); and band-limited forms of both, whose octave count
+//! rest sampled: `Fbm::estimate_tail`; or only the octave choice sampled: `Fbm::estimate_octave`); and band-limited forms of both, whose octave count
 //! stops at the pixel footprint (a biased model of the scene, measured against the full sum).
 //! Every estimator enters the renderers linearly (extinction, ratio-tracking factors,
 //! null-scattering weights, albedo), so every unbiased variant converges to the same image.
@@ -26,9 +26,7 @@ use build_assets::export::png::write_slices;
 use build_assets::spec::Format;
 use build_assets::texture::Texture;
 use noisebake::stochastic::{
-    Fractal, fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_tail_stochastic, fbm3,
-    fbm3_octave_stochastic, fbm3_stochastic, fbm3_tail_stochastic, fractal_tail_stochastic,
-    octave_seed, sparse_conv3,
+    Fbm, Fractal, SparseConvolution, SparseConvolutionFbm, fractal_tail_stochastic, octave_seed,
 };
 use rayon::prelude::*;
 use std::path::Path;
@@ -116,26 +114,30 @@ pub fn fbm(
         f
     };
     match (variant, basis) {
-        (Variant::Deterministic | Variant::BandLimited, Basis::Perlin) => fbm3(q, f, seed),
-        (Variant::Deterministic | Variant::BandLimited, Basis::Sparse(n)) => {
-            fbm_sparse_conv3(q, f, n, seed)
+        (Variant::Deterministic | Variant::BandLimited, Basis::Perlin) => {
+            Fbm::new(f, seed).sample(q)
         }
-        (Variant::Stochastic, Basis::Perlin) => fbm3_stochastic(q, f, seed, xi()),
-        (Variant::Stochastic, Basis::Sparse(n)) => fbm_sparse_conv3_stochastic(q, f, n, seed, xi()),
+        (Variant::Deterministic | Variant::BandLimited, Basis::Sparse(n)) => {
+            SparseConvolutionFbm::new(f, n, seed).sample(q)
+        }
+        (Variant::Stochastic, Basis::Perlin) => Fbm::new(f, seed).estimate(q, xi()),
+        (Variant::Stochastic, Basis::Sparse(n)) => {
+            SparseConvolutionFbm::new(f, n, seed).estimate(q, xi())
+        }
         (Variant::Tail(k) | Variant::TailBandLimited(k), Basis::Perlin) => {
-            fbm3_tail_stochastic(q, f, k, seed, xi())
+            Fbm::new(f, seed).estimate_tail(q, k, xi())
         }
         (Variant::Tail(k) | Variant::TailBandLimited(k), Basis::Sparse(n)) => {
-            fbm_sparse_conv3_tail_stochastic(q, f, k, n, seed, xi())
+            SparseConvolutionFbm::new(f, n, seed).estimate_tail(q, k, xi())
         }
-        (Variant::TailOctave(k), Basis::Perlin) => fbm3_octave_stochastic(q, f, k, seed, xi()),
+        (Variant::TailOctave(k), Basis::Perlin) => Fbm::new(f, seed).estimate_octave(q, k, xi()),
         (Variant::TailOctave(k), Basis::Sparse(n)) => fractal_tail_stochastic(
             q,
             f,
             k,
             xi(),
-            |q, o| sparse_conv3(q, n, octave_seed(seed, o)),
-            |q, o, _| sparse_conv3(q, n, octave_seed(seed, o)),
+            |q, o| SparseConvolution::new(n, octave_seed(seed, o)).sample(q),
+            |q, o, _| SparseConvolution::new(n, octave_seed(seed, o)).sample(q),
         ),
     }
 }

@@ -10,7 +10,7 @@
 //! split is `f32`.
 
 use crate::math::{dfade, fade};
-use crate::stochastic::perlin3_grad_cell;
+use crate::stochastic::Perlin;
 
 /// Splits `x` into cell and offset in `[0, 1)`, in `f64` (total for finite input).
 #[inline(always)]
@@ -43,6 +43,7 @@ fn grad2(ix: i32, iy: i32, seed: u32) -> [f32; 2] {
 }
 
 /// 2D gradient noise and its gradient `(n, ∂n/∂x, ∂n/∂y)` at `p` (noise units).
+#[must_use]
 #[inline]
 pub fn noise2(p: [f64; 2], seed: u32) -> (f32, f32, f32) {
     let (ix, x) = split64(p[0]);
@@ -82,6 +83,7 @@ pub const NOISE_GAIN: f64 = 1.4375;
 ///
 /// `s` below [`MIN_SCALE`] is taken as `MIN_SCALE`; a non-positive or NaN `s` gives no flow
 /// (zero velocity). So finite `p` always gives a finite velocity.
+#[must_use]
 #[inline]
 pub fn velocity2(p: [f64; 2], s: f64, seed: u32) -> [f32; 2] {
     let Some(s) = noise_scale(s) else {
@@ -98,6 +100,7 @@ pub fn velocity2(p: [f64; 2], s: f64, seed: u32) -> [f32; 2] {
 ///
 /// `s` is treated as in [`velocity2`]: at least [`MIN_SCALE`], and no flow for a non-positive
 /// or NaN `s`.
+#[must_use]
 #[inline]
 pub fn velocity3(p: [f64; 3], s: f64, seed: u32) -> [f32; 3] {
     let Some(s) = noise_scale(s) else {
@@ -108,7 +111,7 @@ pub fn velocity3(p: [f64; 3], s: f64, seed: u32) -> [f32; 3] {
     for a in 0..3 {
         (cell[a], f[a]) = split64(p[a] / s);
     }
-    let q = |seed: u32| perlin3_grad_cell(cell, f, seed).1;
+    let q = |seed: u32| Perlin::new(seed).gradient_in_cell(cell, f).1;
     let g1 = q(seed);
     let g2 = q(seed ^ 0x6a09_e667);
     let g3 = q(seed ^ 0xbb67_ae85);
@@ -148,6 +151,7 @@ pub struct SumOfSines3 {
 
 impl SumOfSines3 {
     /// The waves of `seed`.
+    #[must_use]
     pub fn new(seed: u32) -> SumOfSines3 {
         let mut w = SumOfSines3 {
             amp: [0.0; 3 * SOS_WAVES],
@@ -192,6 +196,7 @@ impl SumOfSines3 {
     }
 
     /// The curl of the potential at `p` (lattice units) for noise scale `s`.
+    #[must_use]
     pub fn velocity(&self, p: [f64; 3], s: f64) -> [f32; 3] {
         let inv = 1.0 / s;
         let [g1, g2, g3] = self.gradients([p[0] * inv, p[1] * inv, p[2] * inv]);

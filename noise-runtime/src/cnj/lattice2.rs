@@ -54,6 +54,7 @@ impl Neighbor2 {
     };
 
     /// A hash of the site for colouring cells, uniform in `[0, 1)`.
+    #[must_use]
     pub fn cell_id(&self) -> f32 {
         (hash2(self.site[0], self.site[1], 0x9e37_79b9) >> 8) as f32 * (1.0 / 16_777_216.0)
     }
@@ -78,26 +79,32 @@ impl Cells {
     }
 
     /// F1: distance to the nearest point.
+    #[must_use]
     pub fn f1(&self) -> f32 {
         self.d[0]
     }
     /// F2: distance to the second nearest.
+    #[must_use]
     pub fn f2(&self) -> f32 {
         self.d[1]
     }
     /// F2 − F1 (cell borders).
+    #[must_use]
     pub fn f2_minus_f1(&self) -> f32 {
         self.d[1] - self.d[0]
     }
     /// The foam SDF of eq. (11).
+    #[must_use]
     pub fn foam11(&self, alpha: f32, eps: f32) -> f32 {
         super::foam::sdf11(self.d, alpha, eps)
     }
     /// The foam SDF of eq. (12).
+    #[must_use]
     pub fn foam12(&self, eps: f32) -> f32 {
         super::foam::sdf12(self.d, eps)
     }
     /// Hash of the nearest site in `[0, 1)`, for colouring.
+    #[must_use]
     pub fn cell_id(&self) -> f32 {
         (hash2(self.site[0], self.site[1], 0x9e37_79b9) >> 8) as f32 * (1.0 / 16_777_216.0)
     }
@@ -175,6 +182,7 @@ impl Cnj2 {
     }
 
     /// Position of a lattice site in lattice units (spacing 1).
+    #[must_use]
     #[inline]
     pub fn site_position(site: [i32; 2]) -> [f64; 2] {
         [
@@ -184,6 +192,7 @@ impl Cnj2 {
     }
 
     /// The displacement of a site by the flow, lattice units (direct CNJ, eq. 4).
+    #[must_use]
     pub fn displacement(&self, site: [i32; 2]) -> [f32; 2] {
         let (t, s, steps, _) = self.sane();
         let p0 = Self::site_position(site);
@@ -212,6 +221,7 @@ impl Cnj2 {
     }
 
     /// The jittered point of a site in world units, `f64` (exact for every site).
+    #[must_use]
     pub fn point_f64(&self, site: [i32; 2]) -> [f64; 2] {
         let (_, _, _, sp) = self.sane();
         let p = Self::site_position(site);
@@ -220,12 +230,14 @@ impl Cnj2 {
     }
 
     /// The jittered point of a site in world units.
+    #[must_use]
     pub fn point(&self, site: [i32; 2]) -> [f32; 2] {
         let p = self.point_f64(site);
         [p[0] as f32, p[1] as f32]
     }
 
     /// The lattice site nearest to a position given in lattice units.
+    #[must_use]
     pub fn nearest_site(p: [f64; 2]) -> [i32; 2] {
         let clamp = |v: f64| {
             if v.is_finite() {
@@ -252,6 +264,7 @@ impl Cnj2 {
     /// The `K` nearest jittered points to `x` (world units, `f64` query), nearest first.
     /// `K ≤ 4`. Exact: every site in the hex rings around the nearest lattice site that a
     /// jittered point can reach from (displacements below ~1.2 spacings) is compared.
+    #[must_use]
     pub fn k_nearest_f64<const K: usize>(&self, x: [f64; 2]) -> [Neighbor2; K] {
         const { assert!(K >= 1 && K <= 4, "k_nearest supports K = 1..=4") };
         let (_, _, _, sp) = self.sane();
@@ -272,16 +285,19 @@ impl Cnj2 {
     }
 
     /// The `K ≤ 4` nearest jittered points to `x` (world units), nearest first.
+    #[must_use]
     pub fn k_nearest<const K: usize>(&self, x: [f32; 2]) -> [Neighbor2; K] {
         self.k_nearest_f64([x[0] as f64, x[1] as f64])
     }
 
     /// The nearest jittered point to `x` (world units): point, distance and site.
+    #[must_use]
     pub fn closest(&self, x: [f32; 2]) -> Neighbor2 {
         self.k_nearest::<1>(x)[0]
     }
 
     /// Cellular values at `x`: the four nearest distances (F1…F4) and the nearest site.
+    #[must_use]
     pub fn cells(&self, x: [f32; 2]) -> Cells {
         Cells::from_nearest(self.k_nearest::<4>(x))
     }
@@ -289,6 +305,7 @@ impl Cnj2 {
     /// Sites (columns × rows) a [`Region2`] over the world rectangle `[min, max]` caches: at
     /// most [`MAX_REGION_SITES`] in all (a larger rectangle is cached from its low corner, and
     /// queries beyond the cached block jitter their sites directly, with the same results).
+    #[must_use]
     pub fn region_dims(&self, min: [f32; 2], max: [f32; 2]) -> ([i32; 2], [usize; 2]) {
         let (_, _, _, sp) = self.sane();
         let fin = |v: f32| if v.is_finite() { v as f64 / sp } else { 0.0 };
@@ -395,6 +412,7 @@ impl<'a> Region2<'a> {
     /// [`Cnj2::k_nearest`] from the cache: the nearest site from the two rows bracketing the
     /// query (the covering radius 0.58 is below the row spacing 0.87), then a fixed table of
     /// hex-ring offsets read straight from the cache — no noise evaluation, no `f64`.
+    #[must_use]
     pub fn k_nearest<const K: usize>(&self, x: [f32; 2]) -> [Neighbor2; K] {
         const { assert!(K >= 1 && K <= 4, "k_nearest supports K = 1..=4") };
         let (qx, qy) = (x[0] * self.inv_spacing, x[1] * self.inv_spacing);
@@ -550,11 +568,13 @@ impl<'a> Region2<'a> {
     }
 
     /// [`Cnj2::closest`] from the cache.
+    #[must_use]
     pub fn closest(&self, x: [f32; 2]) -> Neighbor2 {
         self.k_nearest::<1>(x)[0]
     }
 
     /// [`Cnj2::cells`] from the cache.
+    #[must_use]
     pub fn cells(&self, x: [f32; 2]) -> Cells {
         Cells::from_nearest(self.k_nearest::<4>(x))
     }

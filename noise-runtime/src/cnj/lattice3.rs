@@ -82,6 +82,7 @@ impl Neighbor3 {
     };
 
     /// A hash of the site in `[0, 1)` for colouring cells.
+    #[must_use]
     pub fn cell_id(&self) -> f32 {
         let s = self.site;
         (hash4(s[0], s[1], s[2], s[3], 0x9e37_79b9) >> 8) as f32 * (1.0 / 16_777_216.0)
@@ -106,12 +107,14 @@ impl Cnj3 {
     }
 
     /// Position of a site in cube units.
+    #[must_use]
     pub fn site_position(site: [i32; 4]) -> [f64; 3] {
         let b = 0.5 * (site[3] & 1) as f64;
         [site[0] as f64 + b, site[1] as f64 + b, site[2] as f64 + b]
     }
 
     /// The displacement of a site by the flow, cube units.
+    #[must_use]
     pub fn displacement(&self, site: [i32; 4]) -> [f32; 3] {
         let (t, s, steps, _) = self.sane();
         let p0 = Self::site_position(site);
@@ -149,6 +152,7 @@ impl Cnj3 {
     }
 
     /// The jittered point of a site, world units, `f64`.
+    #[must_use]
     pub fn point_f64(&self, site: [i32; 4]) -> [f64; 3] {
         let sp = self.sane().3;
         let p = Self::site_position(site);
@@ -161,6 +165,7 @@ impl Cnj3 {
     }
 
     /// The jittered point of a site, world units.
+    #[must_use]
     pub fn point(&self, site: [i32; 4]) -> [f32; 3] {
         let p = self.point_f64(site);
         [p[0] as f32, p[1] as f32, p[2] as f32]
@@ -170,6 +175,7 @@ impl Cnj3 {
     /// most `6.5 / s` per unit time for the gradient-noise potential (the largest streamline
     /// speed measured over 27 648 sites was 4.5/s; the bound adds ~40 %, and the tests check
     /// it) and `15 / s` for the sum of sines, times `t`.
+    #[must_use]
     pub fn max_displacement(&self) -> f64 {
         let (t, s, _, _) = self.sane();
         t.abs() * self.speed() / s
@@ -179,6 +185,7 @@ impl Cnj3 {
     /// site within `r_K + 2·max_displacement` of the query is jittered and compared, where `r_K`
     /// bounds the distance from any point to its K-th nearest lattice site — so the result is
     /// exact.
+    #[must_use]
     pub fn k_nearest_f64<const K: usize>(&self, x: [f64; 3]) -> [Neighbor3; K] {
         const { assert!(K >= 1 && K <= 4, "k_nearest supports K = 1..=4") };
         let sp = self.sane().3;
@@ -233,17 +240,20 @@ impl Cnj3 {
     }
 
     /// The `K ≤ 4` nearest jittered points to `x` (world units), nearest first.
+    #[must_use]
     pub fn k_nearest<const K: usize>(&self, x: [f32; 3]) -> [Neighbor3; K] {
         self.k_nearest_f64([x[0] as f64, x[1] as f64, x[2] as f64])
     }
 
     /// The nearest jittered point.
+    #[must_use]
     pub fn closest(&self, x: [f32; 3]) -> Neighbor3 {
         self.k_nearest::<1>(x)[0]
     }
 
     /// The four nearest distances (F1…F4) for Worley noise and the foam SDFs
     /// ([`super::foam`]).
+    #[must_use]
     pub fn distances(&self, x: [f32; 3]) -> [f32; 4] {
         let n = self.k_nearest::<4>(x);
         [n[0].distance, n[1].distance, n[2].distance, n[3].distance]

@@ -238,7 +238,7 @@ impl OctavePick {
     }
 }
 
-/// The seed of octave `o` in [`fbm3`] and the other fractal sums: each octave is an independent
+/// The seed of octave `o` in [`Fbm`](super::Fbm) and the other fractal sums: each octave is an independent
 /// noise. For building a sum with [`fractal`] or [`fractal_tail_stochastic`] that matches them.
 #[inline(always)]
 pub fn octave_seed(seed: u32, o: u32) -> u32 {

@@ -4,14 +4,14 @@
 //! `e^(−π a² r²) cos(2π F₀ ω·(p − p_i))`, truncated at `r = 1` (the cell size). The estimator
 //! samples one impulse per cell with probability `(2i + 1)/n_c²`.
 //!
-//! [`GaborNoise`] is the form to keep in a renderer: the parameters prepared once. The free
+//! [`GaborNoise`](super::GaborNoise) is the form to keep in a renderer: the parameters prepared once. The free
 //! functions [`gabor3`] and [`gabor3_stochastic`] prepare them on every call.
 
 use super::estimators::sanitize_xi;
 use super::sparse::{Reach, flip, importance_index, impulse, rotate, unit_bits};
 use crate::math::{cos_turns, exp_neg, sqrt};
 
-/// Gabor noise parameters ([`GaborNoise::new`] prepares them for evaluation).
+/// Gabor noise parameters ([`GaborNoise::new`](super::GaborNoise::new) prepares them for evaluation).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gabor {
     /// Mean impulses per cell (λ), clamped to `[0.1, 32]`.
@@ -51,7 +51,7 @@ impl Gabor {
 }
 
 /// The CDF of the Poisson distribution with mean λ at `0..63`, built once per call of the free
-/// functions (once per [`GaborNoise`]) so each cell's count is a branch-free binary search
+/// functions (once per [`GaborNoise`](super::GaborNoise)) so each cell's count is a branch-free binary search
 /// instead of an inversion loop (a division per step and a mispredicted exit per cell).
 ///
 /// Entries 63 and 64 are 2, above every `u`: [`PoissonGuide`] reads up to two entries past a
@@ -210,33 +210,22 @@ impl PoissonGuide {
     }
 }
 
-/// Gabor noise with its parameters sanitised and its Poisson tables built: what a renderer
-/// keeps and evaluates many times. [`gabor3`] and [`gabor3_stochastic`] build a CDF on every
-/// call (63 running sums, a chain of dependent multiplies and adds) and search it for each
-/// cell's count; a `GaborNoise` builds it once, with a guide table that finds a count in one
-/// read. Same values, bit for bit.
-///
-/// ```
-/// use noise_runtime::stochastic::{Gabor, GaborNoise, gabor3};
-/// let noise = GaborNoise::new(Gabor::default());
-/// let p = [1.25, -3.5, 0.75];
-/// assert_eq!(noise.sample(p, 7), gabor3(p, Gabor::default(), 7));
-/// // One sample of the estimator; its mean over ξ is `noise.sample(p, 7)`.
-/// let estimate = noise.sample_stochastic(p, 7, 0.3);
-/// assert!(estimate.is_finite());
-/// ```
+/// Gabor parameters sanitised and their Poisson tables built: what
+/// [`GaborNoise`](super::GaborNoise) keeps. [`gabor3`] and [`gabor3_stochastic`] build a CDF on
+/// every call (63 running sums, a chain of dependent multiplies and adds) and search it for
+/// each cell's count; the tables find a count in one read. Same values, bit for bit.
 #[derive(Clone, Debug)]
-pub struct GaborNoise {
+pub(crate) struct GaborTables {
     guide: PoissonGuide,
     f0: f32,
 }
 
-impl GaborNoise {
+impl GaborTables {
     /// Sanitises `g` (see [`Gabor`]) and builds its Poisson tables (about 10 µs:
     /// build it once, not per sample).
     pub fn new(g: Gabor) -> Self {
         let (lambda, f0) = g.sane();
-        GaborNoise {
+        GaborTables {
             guide: PoissonGuide::new(PoissonCdf::new(lambda, exp_neg(-lambda))),
             f0,
         }
@@ -248,7 +237,7 @@ impl GaborNoise {
         sum(p, seed, self.f0, |h| self.guide.count(h))
     }
 
-    /// One-sample estimator of [`GaborNoise::sample`] (see [`gabor3_stochastic`]).
+    /// One-sample estimator of [`GaborTables::sample`] (see [`gabor3_stochastic`]).
     #[inline]
     pub fn sample_stochastic(&self, p: [f32; 3], seed: u32, xi: f32) -> f32 {
         let guide = &self.guide;
@@ -263,14 +252,14 @@ impl GaborNoise {
     }
 }
 
-impl From<Gabor> for GaborNoise {
+impl From<Gabor> for GaborTables {
     fn from(g: Gabor) -> Self {
-        GaborNoise::new(g)
+        GaborTables::new(g)
     }
 }
 
 /// 3D Gabor noise: `Σ_c Σ_i ±(i + ½)/n_c · K_i(p)`. To evaluate the same parameters many
-/// times, build a [`GaborNoise`] once.
+/// times, build a [`GaborNoise`](super::GaborNoise) once.
 #[inline]
 pub fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
     let (lambda, f0) = g.sane();
@@ -456,7 +445,7 @@ mod tests {
                 frequency: 9.0,
             },
         ] {
-            let noise = GaborNoise::new(g);
+            let noise = GaborTables::new(g);
             let (mut full, mut cells) = (0, 0);
             for _ in 0..3000 {
                 let p = point(&mut next);

@@ -11,17 +11,24 @@
 //! already averages many samples, the extra variance is small against the time saved.
 //!
 //! ```
-//! use noise_runtime::stochastic::{Fractal, fbm3, fbm3_stochastic};
+//! use noise_runtime::stochastic::{Fbm, Fractal};
 //!
-//! let f = Fractal::new(10, 2.0, 0.5); // ten octaves, lacunarity 2, gain ½
+//! let fbm = Fbm::new(Fractal::new(10, 2.0, 0.5), 1); // ten octaves, lacunarity 2, gain ½
 //! let p = [0.7, 3.1, -5.2];
-//! let exact = fbm3(p, f, 1);
+//! let exact = fbm.sample(p);
 //! // One octave per sample, chosen by ξ: 64 stratified ξ average close to the exact sum.
-//! let mean = (0..64).map(|i| fbm3_stochastic(p, f, 1, (i as f32 + 0.5) / 64.0)).sum::<f32>() / 64.0;
+//! let mean = (0..64).map(|i| fbm.estimate(p, (i as f32 + 0.5) / 64.0)).sum::<f32>() / 64.0;
 //! assert!((mean - exact).abs() < 0.1, "{mean} vs {exact}");
 //! // ξ of exactly 0 and 1 are valid.
-//! assert!(fbm3_stochastic(p, f, 1, 0.0).is_finite() && fbm3_stochastic(p, f, 1, 1.0).is_finite());
+//! assert!(fbm.estimate(p, 0.0).is_finite() && fbm.estimate(p, 1.0).is_finite());
 //! ```
+//!
+//! Every noise is a type with the same verbs — [`sample`](Perlin::sample) (deterministic),
+//! [`estimate`](Perlin::estimate) (one ξ, unbiased), batch forms where they pay — the point
+//! first and ξ last: [`Perlin`], [`Simplex`] (2D, 3D, 4D through [`LatticePoint`]), [`Fbm`],
+//! [`SparseConvolution`], [`SparseConvolutionFbm`], [`GaborNoise`], [`SmoothVoronoi`],
+//! [`Worley`]. The free functions of earlier releases (`perlin3`, `fbm3_stochastic`, …) remain
+//! for one release, deprecated, each naming its replacement.
 //!
 //! # When not to use them (Jensen's inequality)
 //!
@@ -43,8 +50,8 @@
 //! deterministic forms. Use the deterministic function for those (it has no variance); the
 //! paper's 1.9× for Perlin is a GPU figure.
 //!
-//! Where many points are shaded at once, the batch forms ([`perlin3_batch`], [`fbm3_batch`]
-//! and their estimators) run eight points per AVX2 instruction, as a GPU warp runs its
+//! Where many points are shaded at once, the batch forms ([`Perlin::sample_batch`],
+//! [`Fbm::sample_batch`] and their estimators) run eight points per AVX2 instruction, as a GPU warp runs its
 //! pixels, and cut the time of every variant severalfold; the estimator's lead over the
 //! deterministic form stays below the paper's GPU ratios, since on lanes the deterministic
 //! form's eight corners cost little more than the estimator's one.
@@ -82,29 +89,339 @@ pub(crate) fn uniforms(mut s: u64) -> impl FnMut() -> f32 {
     }
 }
 
-pub use batch::{fbm3_batch, fbm3_stochastic_batch, perlin3_batch, perlin3_stochastic_batch};
+mod noises;
+
 pub use estimators::{
     ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
 };
-pub use fractal::{
-    Fractal, fbm3, fbm3_octave_stochastic, fbm3_stochastic, fbm3_tail_stochastic, fractal,
-    fractal_stochastic, fractal_tail_stochastic, octave_seed,
-};
-pub use gabor::{Gabor, GaborNoise, gabor3, gabor3_stochastic};
+pub use fractal::{Fractal, fractal, fractal_stochastic, fractal_tail_stochastic, octave_seed};
+pub use gabor::Gabor;
 pub use hash::{hash2, hash3, hash4, pcg};
-pub use perlin::{
-    perlin2, perlin2_grad, perlin2_stochastic, perlin3, perlin3_grad, perlin3_grad_cell,
-    perlin3_stochastic, perlin4, perlin4_grad, perlin4_stochastic,
+pub use noises::{
+    Fbm, GaborNoise, LatticePoint, Perlin, Simplex, SmoothVoronoi, SparseConvolution,
+    SparseConvolutionFbm, Worley,
 };
-pub use simplex::{
-    simplex2, simplex2_grad, simplex2_stochastic, simplex3, simplex3_grad, simplex3_stochastic,
-    simplex4, simplex4_grad, simplex4_stochastic,
-};
-pub use sparse::{
-    fbm_sparse_conv3, fbm_sparse_conv3_stochastic, fbm_sparse_conv3_stochastic1,
-    fbm_sparse_conv3_tail_stochastic, sparse_conv3, sparse_conv3_stochastic,
-    sparse_conv3_stochastic1,
-};
-pub use voronoi::{
-    SMOOTH_VORONOI_Q, feature_point3, smooth_voronoi3, smooth_voronoi3_stochastic, worley3_f1,
-};
+pub use voronoi::SMOOTH_VORONOI_Q;
+
+/// The free functions of earlier releases, kept for one release. Each is the method of a noise
+/// type named in its deprecation note (the same code, bit for bit: `tests/api.rs`).
+mod aliases {
+    use super::*;
+
+    #[deprecated(since = "0.2.0", note = "use `Perlin::new(seed).sample(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin2(p: [f32; 2], seed: u32) -> f32 {
+        perlin::perlin2(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Perlin::new(seed).sample(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
+        perlin::perlin3(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Perlin::new(seed).sample(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
+        perlin::perlin4(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Perlin::new(seed).estimate(p, xi)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
+        perlin::perlin2_stochastic(p, seed, xi)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Perlin::new(seed).estimate(p, xi)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
+        perlin::perlin3_stochastic(p, seed, xi)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Perlin::new(seed).estimate(p, xi)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
+        perlin::perlin4_stochastic(p, seed, xi)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Perlin::new(seed).gradient(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
+        perlin::perlin2_grad(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Perlin::new(seed).gradient(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
+        perlin::perlin3_grad(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Perlin::new(seed).gradient(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
+        perlin::perlin4_grad(p, seed)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Perlin::new(seed).gradient_in_cell(cell, f)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin3_grad_cell(cell: [i32; 3], f: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
+        perlin::perlin3_grad_cell(cell, f, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Simplex::new(seed).sample(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn simplex2(p: [f32; 2], seed: u32) -> f32 {
+        simplex::simplex2(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Simplex::new(seed).sample(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
+        simplex::simplex3(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Simplex::new(seed).sample(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn simplex4(p: [f32; 4], seed: u32) -> f32 {
+        simplex::simplex4(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Simplex::new(seed).estimate(p, xi)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn simplex2_stochastic(p: [f32; 2], seed: u32, xi: f32) -> f32 {
+        simplex::simplex2_stochastic(p, seed, xi)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Simplex::new(seed).estimate(p, xi)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
+        simplex::simplex3_stochastic(p, seed, xi)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Simplex::new(seed).estimate(p, xi)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
+        simplex::simplex4_stochastic(p, seed, xi)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Simplex::new(seed).gradient(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn simplex2_grad(p: [f32; 2], seed: u32) -> (f32, [f32; 2]) {
+        simplex::simplex2_grad(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Simplex::new(seed).gradient(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn simplex3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
+        simplex::simplex3_grad(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Simplex::new(seed).gradient(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn simplex4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
+        simplex::simplex4_grad(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Fbm::new(f, seed).sample(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn fbm3(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
+        fractal::fbm3(p, f, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Fbm::new(f, seed).estimate(p, xi)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
+        fractal::fbm3_stochastic(p, f, seed, xi)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Perlin::new(seed).sample_batch(points, out)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin3_batch(points: &[[f32; 3]], seed: u32, out: &mut [f32]) -> usize {
+        batch::perlin3_batch(points, seed, out)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Perlin::new(seed).estimate_batch(points, xi, out)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn perlin3_stochastic_batch(
+        points: &[[f32; 3]],
+        seed: u32,
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> usize {
+        batch::perlin3_stochastic_batch(points, seed, xi, out)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Fbm::new(f, seed).sample_batch(points, out)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn fbm3_batch(points: &[[f32; 3]], f: Fractal, seed: u32, out: &mut [f32]) -> usize {
+        batch::fbm3_batch(points, f, seed, out)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `Fbm::new(f, seed).estimate_batch(points, xi, out)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn fbm3_stochastic_batch(
+        points: &[[f32; 3]],
+        f: Fractal,
+        seed: u32,
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> usize {
+        batch::fbm3_stochastic_batch(points, f, seed, xi, out)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `SparseConvolution::new(n, seed).sample(p)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn sparse_conv3(p: [f32; 3], n: u32, seed: u32) -> f32 {
+        sparse::sparse_conv3(p, n, seed)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `SparseConvolution::new(n, seed).estimate(p, xi)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn sparse_conv3_stochastic(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
+        sparse::sparse_conv3_stochastic(p, n, seed, xi)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `SparseConvolution::new(n, seed).estimate_one_term(p, xi)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn sparse_conv3_stochastic1(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
+        sparse::sparse_conv3_stochastic1(p, n, seed, xi)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `SparseConvolutionFbm::new(f, n, seed).sample(p)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn fbm_sparse_conv3(p: [f32; 3], f: Fractal, n: u32, seed: u32) -> f32 {
+        sparse::fbm_sparse_conv3(p, f, n, seed)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `SparseConvolutionFbm::new(f, n, seed).estimate(p, xi)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn fbm_sparse_conv3_stochastic(p: [f32; 3], f: Fractal, n: u32, seed: u32, xi: f32) -> f32 {
+        sparse::fbm_sparse_conv3_stochastic(p, f, n, seed, xi)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `SparseConvolutionFbm::new(f, n, seed).estimate_one_term(p, xi)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn fbm_sparse_conv3_stochastic1(
+        p: [f32; 3],
+        f: Fractal,
+        n: u32,
+        seed: u32,
+        xi: f32,
+    ) -> f32 {
+        sparse::fbm_sparse_conv3_stochastic1(p, f, n, seed, xi)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `GaborNoise::new(g, seed).sample(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
+        gabor::gabor3(p, g, seed)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `GaborNoise::new(g, seed).estimate(p, xi)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
+        gabor::gabor3_stochastic(p, g, seed, xi)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `SmoothVoronoi::new(seed).sample(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
+        voronoi::smooth_voronoi3(p, seed)
+    }
+
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `SmoothVoronoi::new(seed).estimate_with(p, q, xi)`"
+    )]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn smooth_voronoi3_stochastic(p: [f32; 3], seed: u32, q: f32, xi: f32) -> f32 {
+        voronoi::smooth_voronoi3_stochastic(p, seed, q, xi)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Worley::new(seed).f1(p)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn worley3_f1(p: [f32; 3], seed: u32) -> f32 {
+        voronoi::worley3_f1(p, seed)
+    }
+
+    #[deprecated(since = "0.2.0", note = "use `Worley::new(seed).feature_point(cell)`")]
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn feature_point3(cell: [i32; 3], seed: u32) -> [f32; 3] {
+        voronoi::feature_point3(cell, seed)
+    }
+}
+#[allow(deprecated)]
+pub use aliases::*;

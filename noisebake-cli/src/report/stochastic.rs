@@ -91,77 +91,85 @@ type Sto = Box<dyn Fn([f32; 3], f32) -> f32>;
 /// The functions of the report with the paper's settings.
 fn functions() -> Vec<(&'static str, Det, Option<Sto>)> {
     let fbm = Fractal::new(10, 2.0, 0.5);
+    // Prepared once, as a renderer keeps it.
+    let gabor = std::rc::Rc::new(GaborNoise::new(Gabor::default(), 1));
     vec![
         (
             "perlin2",
-            Box::new(|p: [f32; 3]| perlin2([p[0], p[1]], 1)),
+            Box::new(|p: [f32; 3]| Perlin::new(1).sample([p[0], p[1]])),
             Some(Box::new(|p: [f32; 3], x| {
-                perlin2_stochastic([p[0], p[1]], 1, x)
+                Perlin::new(1).estimate([p[0], p[1]], x)
             })),
         ),
         (
             "perlin3",
-            Box::new(|p| perlin3(p, 1)),
-            Some(Box::new(|p, x| perlin3_stochastic(p, 1, x))),
+            Box::new(|p| Perlin::new(1).sample(p)),
+            Some(Box::new(|p, x| Perlin::new(1).estimate(p, x))),
         ),
         (
             "perlin4",
-            Box::new(|p: [f32; 3]| perlin4([p[0], p[1], p[2], p[0] + p[2]], 1)),
+            Box::new(|p: [f32; 3]| Perlin::new(1).sample([p[0], p[1], p[2], p[0] + p[2]])),
             Some(Box::new(|p: [f32; 3], x| {
-                perlin4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x)
+                Perlin::new(1).estimate([p[0], p[1], p[2], p[0] + p[2]], x)
             })),
         ),
         (
             "simplex2",
-            Box::new(|p: [f32; 3]| simplex2([p[0], p[1]], 1)),
+            Box::new(|p: [f32; 3]| Simplex::new(1).sample([p[0], p[1]])),
             Some(Box::new(|p: [f32; 3], x| {
-                simplex2_stochastic([p[0], p[1]], 1, x)
+                Simplex::new(1).estimate([p[0], p[1]], x)
             })),
         ),
         (
             "simplex3",
-            Box::new(|p| simplex3(p, 1)),
-            Some(Box::new(|p, x| simplex3_stochastic(p, 1, x))),
+            Box::new(|p| Simplex::new(1).sample(p)),
+            Some(Box::new(|p, x| Simplex::new(1).estimate(p, x))),
         ),
         (
             "simplex4",
-            Box::new(|p: [f32; 3]| simplex4([p[0], p[1], p[2], p[0] + p[2]], 1)),
+            Box::new(|p: [f32; 3]| Simplex::new(1).sample([p[0], p[1], p[2], p[0] + p[2]])),
             Some(Box::new(|p: [f32; 3], x| {
-                simplex4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x)
+                Simplex::new(1).estimate([p[0], p[1], p[2], p[0] + p[2]], x)
             })),
         ),
         (
             "fbm3",
-            Box::new(move |p| fbm3(p, fbm, 1)),
-            Some(Box::new(move |p, x| fbm3_stochastic(p, fbm, 1, x))),
+            Box::new(move |p| Fbm::new(fbm, 1).sample(p)),
+            Some(Box::new(move |p, x| Fbm::new(fbm, 1).estimate(p, x))),
         ),
         (
             "sparse_conv3",
-            Box::new(|p| sparse_conv3(p, 10, 1)),
-            Some(Box::new(|p, x| sparse_conv3_stochastic(p, 10, 1, x))),
+            Box::new(|p| SparseConvolution::new(10, 1).sample(p)),
+            Some(Box::new(|p, x| {
+                SparseConvolution::new(10, 1).estimate(p, x)
+            })),
         ),
         (
             "fbm_sparse_conv3",
-            Box::new(move |p| fbm_sparse_conv3(p, fbm, 10, 1)),
+            Box::new(move |p| SparseConvolutionFbm::new(fbm, 10, 1).sample(p)),
             Some(Box::new(move |p, x| {
-                fbm_sparse_conv3_stochastic(p, fbm, 10, 1, x)
+                SparseConvolutionFbm::new(fbm, 10, 1).estimate(p, x)
             })),
         ),
         (
             "gabor3",
-            Box::new(|p| gabor3(p, Gabor::default(), 1)),
-            Some(Box::new(|p, x| {
-                gabor3_stochastic(p, Gabor::default(), 1, x)
+            Box::new({
+                let g = gabor.clone();
+                move |p| g.sample(p)
+            }),
+            Some(Box::new({
+                let g = gabor.clone();
+                move |p, x| g.estimate(p, x)
             })),
         ),
         (
             "voronoi3",
-            Box::new(|p| smooth_voronoi3(p, 1)),
+            Box::new(|p| SmoothVoronoi::new(1).sample(p)),
             Some(Box::new(|p, x| {
-                smooth_voronoi3_stochastic(p, 1, SMOOTH_VORONOI_Q, x)
+                SmoothVoronoi::new(1).estimate_with(p, SMOOTH_VORONOI_Q, x)
             })),
         ),
-        ("worley3", Box::new(|p| worley3_f1(p, 1)), None),
+        ("worley3", Box::new(|p| Worley::new(1).f1(p)), None),
     ]
 }
 
@@ -374,7 +382,7 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
         pts,
         xis,
         "perlin3",
-        |p, _| perlin3(p, 1),
+        |p, _| Perlin::new(1).sample(p),
         |p, _| Perlin.sample3(p),
         |p, _| p1.get_noise_3d(p[0], p[1], p[2]),
     ));
@@ -382,7 +390,7 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
         pts,
         xis,
         "fbm3",
-        move |p, _| fbm3(p, fbm, 1),
+        move |p, _| Fbm::new(fbm, 1).sample(p),
         |p, _| nf_fbm.sample3(p),
         |p, _| p10.get_noise_3d(p[0], p[1], p[2]),
     ));
@@ -390,7 +398,7 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
         pts,
         xis,
         "worley3",
-        |p, _| worley3_f1(p, 1),
+        |p, _| Worley::new(1).f1(p),
         |p, _| nf_cell.sample3(p),
         |p, _| cell.get_noise_3d(p[0], p[1], p[2]),
     ));
@@ -399,7 +407,7 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
         pts,
         xis,
         "voronoi3",
-        |p, _| smooth_voronoi3(p, 1),
+        |p, _| SmoothVoronoi::new(1).sample(p),
         |p, _| nf_cell.sample3(p),
         |p, _| cell.get_noise_3d(p[0], p[1], p[2]),
     ));
@@ -476,7 +484,7 @@ pub fn run_with(timed: usize) -> Vec<Row> {
     // Timing, monomorphised per function (boxing would hide inlining and skew the ratios).
     let fbm = Fractal::new(10, 2.0, 0.5);
     // Gabor noise prepared once, as a renderer keeps it (`gabor3` builds its tables per call).
-    let g = GaborNoise::new(Gabor::default());
+    let g = GaborNoise::new(Gabor::default(), 1);
     macro_rules! times {
         ($($name:literal: |$p:ident, $x:ident| $det:expr, $sto:expr;)*) => {{
             let mut t = BTreeMap::new();
@@ -492,22 +500,22 @@ pub fn run_with(timed: usize) -> Vec<Row> {
         }};
     }
     let times = times! {
-        "perlin2": |p, x| perlin2([p[0], p[1]], 1), perlin2_stochastic([p[0], p[1]], 1, x);
-        "perlin3": |p, x| perlin3(p, 1), perlin3_stochastic(p, 1, x);
-        "perlin4": |p, x| perlin4([p[0], p[1], p[2], p[0] + p[2]], 1),
-            perlin4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x);
-        "simplex2": |p, x| simplex2([p[0], p[1]], 1), simplex2_stochastic([p[0], p[1]], 1, x);
-        "simplex3": |p, x| simplex3(p, 1), simplex3_stochastic(p, 1, x);
-        "simplex4": |p, x| simplex4([p[0], p[1], p[2], p[0] + p[2]], 1),
-            simplex4_stochastic([p[0], p[1], p[2], p[0] + p[2]], 1, x);
-        "fbm3": |p, x| fbm3(p, fbm, 1), fbm3_stochastic(p, fbm, 1, x);
-        "sparse_conv3": |p, x| sparse_conv3(p, 10, 1), sparse_conv3_stochastic(p, 10, 1, x);
-        "fbm_sparse_conv3": |p, x| fbm_sparse_conv3(p, fbm, 10, 1),
-            fbm_sparse_conv3_stochastic(p, fbm, 10, 1, x);
-        "gabor3": |p, x| g.sample(p, 1), g.sample_stochastic(p, 1, x);
-        "voronoi3": |p, x| smooth_voronoi3(p, 1),
-            smooth_voronoi3_stochastic(p, 1, SMOOTH_VORONOI_Q, x);
-        "worley3": |p, x| worley3_f1(p, 1), worley3_f1(p, 1);
+        "perlin2": |p, x| Perlin::new(1).sample([p[0], p[1]]), Perlin::new(1).estimate([p[0], p[1]], x);
+        "perlin3": |p, x| Perlin::new(1).sample(p), Perlin::new(1).estimate(p, x);
+        "perlin4": |p, x| Perlin::new(1).sample([p[0], p[1], p[2], p[0] + p[2]]),
+            Perlin::new(1).estimate([p[0], p[1], p[2], p[0] + p[2]], x);
+        "simplex2": |p, x| Simplex::new(1).sample([p[0], p[1]]), Simplex::new(1).estimate([p[0], p[1]], x);
+        "simplex3": |p, x| Simplex::new(1).sample(p), Simplex::new(1).estimate(p, x);
+        "simplex4": |p, x| Simplex::new(1).sample([p[0], p[1], p[2], p[0] + p[2]]),
+            Simplex::new(1).estimate([p[0], p[1], p[2], p[0] + p[2]], x);
+        "fbm3": |p, x| Fbm::new(fbm, 1).sample(p), Fbm::new(fbm, 1).estimate(p, x);
+        "sparse_conv3": |p, x| SparseConvolution::new(10, 1).sample(p), SparseConvolution::new(10, 1).estimate(p, x);
+        "fbm_sparse_conv3": |p, x| SparseConvolutionFbm::new(fbm, 10, 1).sample(p),
+            SparseConvolutionFbm::new(fbm, 10, 1).estimate(p, x);
+        "gabor3": |p, x| g.sample(p), g.estimate(p, x);
+        "voronoi3": |p, x| SmoothVoronoi::new(1).sample(p),
+            SmoothVoronoi::new(1).estimate_with(p, SMOOTH_VORONOI_Q, x);
+        "worley3": |p, x| Worley::new(1).f1(p), Worley::new(1).f1(p);
     };
     let mut rows = Vec::new();
     for (name, det, sto) in functions() {
@@ -529,20 +537,20 @@ pub fn run_with(timed: usize) -> Vec<Row> {
             time_pair(
                 &pts,
                 &xis,
-                |p, _| sparse_conv3(p, 10, 1),
-                |p, x| sparse_conv3_stochastic1(p, 10, 1, x),
+                |p, _| SparseConvolution::new(10, 1).sample(p),
+                |p, x| SparseConvolution::new(10, 1).estimate_one_term(p, x),
             ),
-            Box::new(|p, x| sparse_conv3_stochastic1(p, 10, 1, x)),
+            Box::new(|p, x| SparseConvolution::new(10, 1).estimate_one_term(p, x)),
         ),
         (
             "fbm_sparse_conv3",
             time_pair(
                 &pts,
                 &xis,
-                |p, _| fbm_sparse_conv3(p, fbm, 10, 1),
-                |p, x| fbm_sparse_conv3_stochastic1(p, fbm, 10, 1, x),
+                |p, _| SparseConvolutionFbm::new(fbm, 10, 1).sample(p),
+                |p, x| SparseConvolutionFbm::new(fbm, 10, 1).estimate_one_term(p, x),
             ),
-            Box::new(move |p, x| fbm_sparse_conv3_stochastic1(p, fbm, 10, 1, x)),
+            Box::new(move |p, x| SparseConvolutionFbm::new(fbm, 10, 1).estimate_one_term(p, x)),
         ),
     ];
     for (name, t, sto) in one_term {
@@ -578,22 +586,22 @@ fn batch_rows(
     let forms: [(&str, Single, Batch, Batch); 2] = [
         (
             "perlin3",
-            |p, _| perlin3(p, 1),
+            |p, _| Perlin::new(1).sample(p),
             |p, _, o| {
-                perlin3_batch(p, 1, o);
+                Perlin::new(1).sample_batch(p, o);
             },
             |p, x, o| {
-                perlin3_stochastic_batch(p, 1, x, o);
+                Perlin::new(1).estimate_batch(p, x, o);
             },
         ),
         (
             "fbm3",
-            |p, _| fbm3(p, Fractal::new(10, 2.0, 0.5), 1),
+            |p, _| Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample(p),
             |p, _, o| {
-                fbm3_batch(p, Fractal::new(10, 2.0, 0.5), 1, o);
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample_batch(p, o);
             },
             |p, x, o| {
-                fbm3_stochastic_batch(p, Fractal::new(10, 2.0, 0.5), 1, x, o);
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).estimate_batch(p, x, o);
             },
         ),
     ];
