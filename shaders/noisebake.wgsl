@@ -225,7 +225,7 @@ fn nb_bayer_frame(p: vec2<i32>, log2n: u32, frame: u32) -> f32 {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Hashes (noise_runtime::stochastic::hash)
+// Hashes (noise_runtime::hash)
 
 // The runtime's 32-bit avalanche mix.
 fn nb_mix(x: u32) -> u32 {
@@ -241,19 +241,19 @@ fn nb_mix(x: u32) -> u32 {
 const NB_PRIME = vec4<u32>(0x8da6b343u, 0xd8163841u, 0xcb1ab31fu, 0x165667b1u);
 const NB_CORNER_MUL = 0x27d4eb2du;
 
-// Hash of a 2D cell (stochastic::hash2).
+// Hash of a 2D cell (hash::hash2).
 fn nb_hash2(p: vec2<i32>, seed: u32) -> u32 {
     let c = bitcast<vec2<u32>>(p) * NB_PRIME.xy;
     return nb_mix(seed ^ c.x ^ c.y);
 }
 
-// Hash of a 3D cell (stochastic::hash3).
+// Hash of a 3D cell (hash::hash3).
 fn nb_hash3(p: vec3<i32>, seed: u32) -> u32 {
     let c = bitcast<vec3<u32>>(p) * NB_PRIME.xyz;
     return nb_mix(seed ^ c.x ^ c.y ^ c.z);
 }
 
-// The PCG hash of one word (PCG-RXS-M-XS; Jarzynski & Olano 2020) (stochastic::pcg).
+// The PCG hash of one word (PCG-RXS-M-XS; Jarzynski & Olano 2020) (hash::pcg).
 fn nb_pcg(v: u32) -> u32 {
     let state = v * 747796405u + 2891336453u;
     let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;

@@ -12,6 +12,7 @@
 //! - [`ldg`]: low-discrepancy grids computed on the fly (R2, plus-shaped, IGN, Bayer), exact for
 //!   huge coordinates, optionally animated per frame.
 //! - [`sequence`]: the R2 and golden-ratio sequences in 64-bit fixed point.
+//! - [`hash`]: the integer hashes every lattice here uses (cells, corners, PCG).
 //! - [`warp`]: from uniform numbers to disks, spheres and hemispheres; safe at 0 and 1.
 //! - [`cnj`]: curl-noise jittering (Bærentzen et al. 2023): closest-point and k-nearest queries
 //!   on a jittered triangular (2D) or BCC (3D) lattice, and Worley noise built on them, with no
@@ -61,6 +62,7 @@ extern crate std;
 
 pub mod cnj;
 pub mod coord;
+pub mod hash;
 #[cfg(all(
     target_arch = "x86_64",
     target_feature = "sse2",

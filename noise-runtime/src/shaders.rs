@@ -10,7 +10,7 @@
 //! | `nb_unorm8_unit`, `nb_u16_unit` | [`Texel::unit`](crate::Texel::unit) of a loaded texel | bit for bit |
 //! | `nb_r2`, `nb_r2_frame`, `nb_plus`, `nb_plus_frame`, `nb_bayer`, `nb_bayer_frame` | [`ldg`](crate::ldg) | bit for bit (64-bit fixed point emulated in `u32` pairs) |
 //! | `nb_ign`, `nb_ign_frame` | [`ldg::ign`](crate::ldg::ign) | within 2⁻²³ (the CPU rounds an `f64`) |
-//! | `nb_hash2`, `nb_hash3`, `nb_pcg` | [`stochastic::hash2`](crate::stochastic::hash2), [`pcg`](crate::stochastic::pcg) | bit for bit |
+//! | `nb_hash2`, `nb_hash3`, `nb_pcg` | [`hash::hash2`](crate::hash::hash2), [`hash::pcg`](crate::hash::pcg) | bit for bit |
 //! | `nb_perlin3`, `nb_fbm3`, `nb_perlin3_estimate`, `nb_fbm3_estimate` | [`Perlin`](crate::stochastic::Perlin), [`Fbm`](crate::stochastic::Fbm) | within tolerances (below) |
 //! | `nb_cnj2_closest` | [`Cnj2::closest`](crate::cnj::Cnj2::closest) | same site; point within tolerance |
 //!

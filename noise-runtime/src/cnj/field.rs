@@ -9,6 +9,7 @@
 //! `f64`, so the field is exact for any lattice site an `i32` can name; the arithmetic after the
 //! split is `f32`.
 
+use crate::hash::{CORNER_MUL, PRIME};
 use crate::math::{dfade, fade};
 use crate::stochastic::Perlin;
 
@@ -32,8 +33,8 @@ pub(crate) fn split64(x: f64) -> (i32, f32) {
 fn grad2(ix: i32, iy: i32, seed: u32) -> [f32; 2] {
     // Two multiplies: the lattice-corner hash, then one xorshift–multiply round so the low
     // half (the y component) is as well mixed as the high half.
-    let h = (seed ^ (ix as u32).wrapping_mul(0x8da6_b343) ^ (iy as u32).wrapping_mul(0xd816_3841))
-        .wrapping_mul(0x27d4_eb2d);
+    let h = (seed ^ (ix as u32).wrapping_mul(PRIME[0]) ^ (iy as u32).wrapping_mul(PRIME[1]))
+        .wrapping_mul(CORNER_MUL);
     let h = (h ^ (h >> 15)).wrapping_mul(0x2c1b_3c6d);
     const S: f32 = 1.0 / 32768.0;
     [
@@ -160,7 +161,7 @@ impl SumOfSines3 {
         };
         let unit = |h: u32| (h >> 8) as f32 * (1.0 / 16_777_216.0);
         for i in 0..3 * SOS_WAVES {
-            let h = |k: i32| crate::stochastic::hash3(i as i32, k, 0x5150_5150, seed);
+            let h = |k: i32| crate::hash::hash3(i as i32, k, 0x5150_5150, seed);
             let z = 1.0 - 2.0 * unit(h(0));
             let r = crate::math::sqrt((1.0 - z * z).max(0.0));
             let az = unit(h(1));

@@ -3,8 +3,8 @@
 
 use super::field::velocity2;
 use super::{Integrator, TopK};
+use crate::hash::hash2;
 use crate::math::{ceil_f64, floor_f64, round_f64, sqrt_f64};
-use crate::stochastic::hash2;
 
 /// Row spacing of the triangular lattice in units of the point spacing: √3/2.
 const ROW: f64 = 0.866_025_403_784_438_6;

@@ -4,8 +4,8 @@
 
 use super::field::{SumOfSines3, velocity3};
 use super::{Integrator, TopK};
+use crate::hash::hash4;
 use crate::math::{ceil_f64, floor_f64, sqrt_f64};
-use crate::stochastic::hash4;
 
 /// The undisplaced lattice.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

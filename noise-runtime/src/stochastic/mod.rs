@@ -72,7 +72,7 @@ mod batch;
 mod estimators;
 mod fractal;
 mod gabor;
-mod hash;
+
 mod perlin;
 mod simplex;
 mod sparse;
@@ -91,12 +91,12 @@ pub(crate) fn uniforms(mut s: u64) -> impl FnMut() -> f32 {
 
 mod noises;
 
+pub use crate::hash::{hash2, hash3, hash4, pcg};
 pub use estimators::{
     ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
 };
 pub use fractal::{Fractal, fractal, fractal_stochastic, fractal_tail_stochastic, octave_seed};
 pub use gabor::Gabor;
-pub use hash::{hash2, hash3, hash4, pcg};
 pub use noises::{
     Fbm, GaborNoise, LatticePoint, Perlin, Simplex, SmoothVoronoi, SparseConvolution,
     SparseConvolutionFbm, Worley,

@@ -5,7 +5,7 @@
 //! is evaluated.
 
 use super::estimators::{Narrowing, fresh_corner2, nested_corner, unit_corner};
-use super::hash::{CORNER_MUL, PRIME, corner};
+use crate::hash::{CORNER_MUL, PRIME, corner};
 use crate::math::{dfade, fade, split};
 
 #[cfg(all(

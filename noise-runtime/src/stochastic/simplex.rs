@@ -14,7 +14,7 @@
 
 #[cfg(test)]
 use super::estimators::sanitize_xi;
-use super::hash::{CORNER_MUL, PRIME, hash3};
+use crate::hash::{CORNER_MUL, PRIME, hash3};
 #[cfg(test)]
 use crate::math::split;
 use lattice::{Corners, Skew};
@@ -221,9 +221,9 @@ const SCALE2: f32 = 99.0;
 const SCALE4: f32 = 62.0;
 
 /// The hash of lattice point `c` for the 2D and 4D gradients: the xor of the coordinates'
-/// axis products with the seed, times one odd constant ([`corner`](super::hash::corner)'s
+/// axis products with the seed, times one odd constant ([`corner`](crate::hash::corner)'s
 /// form; use its top bits). One multiply per axis, all side by side, and one after, where
-/// [`hash2`](super::hash::hash2)'s finishing rounds would add two more multiplies to the
+/// [`hash2`](crate::hash::hash2)'s finishing rounds would add two more multiplies to the
 /// chain from the point to its value.
 #[inline(always)]
 fn lattice_hash<const N: usize>(c: [i32; N], seed: u32) -> u32 {

@@ -6,7 +6,7 @@
 
 use super::estimators::sanitize_xi;
 use super::fractal::{Fractal, fractal, fractal_stochastic, fractal_tail_stochastic, octave_seed};
-use super::hash::{PRIME, corner};
+use crate::hash::{PRIME, corner};
 use crate::math::{in_split_range, split, split_in_range};
 
 /// Kernel `k(r) = (1 − r²)³` for `r < 1`, 0 beyond: smooth (C¹ at the support edge, zero

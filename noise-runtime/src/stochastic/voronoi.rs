@@ -6,7 +6,7 @@
 //! its branches mispredict, which costs more on a CPU.
 
 use super::estimators::{roulette_in_range, sanitize_xi};
-use super::hash::{PRIME, corner, point3};
+use crate::hash::{PRIME, corner, point3};
 #[cfg(all(
     target_arch = "x86_64",
     target_feature = "sse2",
@@ -114,7 +114,7 @@ impl Hood {
 ))]
 #[inline(always)]
 fn groups_lanes(cell: crate::lanes::I4, f: F4, seed: u32) -> [F4; 7] {
-    use super::hash::point3_row;
+    use crate::hash::point3_row;
     let prods = |c: u32, a: usize| {
         let b = c.wrapping_mul(PRIME[a]);
         [b.wrapping_sub(PRIME[a]), b, b.wrapping_add(PRIME[a])]
@@ -360,8 +360,8 @@ fn picked_distance_lanes(cell: crate::lanes::I4, f: F4, seed: u32, bits: u32) ->
     let [cx, cy, cz] = (cell + im1).xyz();
     let h =
         seed ^ cx.wrapping_mul(PRIME[0]) ^ cy.wrapping_mul(PRIME[1]) ^ cz.wrapping_mul(PRIME[2]);
-    let q = F4::new(super::hash::point3_row(
-        h.wrapping_mul(super::hash::CORNER_MUL),
+    let q = F4::new(crate::hash::point3_row(
+        h.wrapping_mul(crate::hash::CORNER_MUL),
     ));
     let d = (f - im1.to_f32()) - q;
     // The square root on the lanes: a sum of squares needs no guard for negatives or NaN.
@@ -385,7 +385,7 @@ fn picked_d2_in(cell: [u32; 3], f: [f32; 3], seed: u32, bits: u32) -> f32 {
             .wrapping_mul(PRIME[a]);
         d[a] = f[a] - (i as f32 - 1.0);
     }
-    let q = point3(h.wrapping_mul(super::hash::CORNER_MUL));
+    let q = point3(h.wrapping_mul(crate::hash::CORNER_MUL));
     for a in 0..3 {
         let x = d[a] - q[a];
         d2 += x * x;

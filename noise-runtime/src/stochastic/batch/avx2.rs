@@ -9,8 +9,8 @@
 
 use super::super::estimators::{fixed, sanitize_xi};
 use super::super::fractal::{Fractal, octave_seed};
-use super::super::hash::{CORNER_MUL, PRIME};
 use super::super::perlin::GRAD3_COLUMNS;
+use crate::hash::{CORNER_MUL, PRIME};
 use crate::lanes8::{Avx2, F8, U8};
 use crate::math::{fade, split_in_range};
 

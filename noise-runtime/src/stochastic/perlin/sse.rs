@@ -6,8 +6,8 @@
 //! two.
 
 use super::{GRAD3, GRAD4, Narrowing, PRIME, unit_corner};
+use crate::hash::CORNER_MUL;
 use crate::lanes::{self, F4, I4};
-use crate::stochastic::hash::CORNER_MUL;
 
 /// [`perlin3`](super::perlin3) on lanes, `None` outside the split range (where the scalar
 /// form runs). The four entry points below have the shape the scalar ones dispatch on.

@@ -5,9 +5,9 @@
 //! tests compare the two.
 
 use super::{G3, GRAD, SCALE, SCALE4, SKEW4, rank_order};
+use crate::hash::{CORNER_MUL, PRIME, hash3};
 use crate::lanes::{self, F4, I4};
 use crate::stochastic::estimators::{sanitize_xi, unit_corner};
-use crate::stochastic::hash::{CORNER_MUL, PRIME, hash3};
 
 /// [`GRAD`] padded to four lanes, so that a row is one load.
 static GRAD_ROWS: [[f32; 4]; 16] = {

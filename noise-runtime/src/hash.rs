@@ -1,5 +1,7 @@
-//! Integer hashes of lattice cells: a multiply-xor combination of the coordinates finished by
-//! a 32-bit avalanche mix, so neighbouring cells get unrelated bits. Wrapping arithmetic only.
+//! Integer hashes of lattice cells, shared by every lattice in the crate (stochastic noise, the
+//! curl-noise fields and CNJ's lattices): a multiply-xor combination of the coordinates finished
+//! by a 32-bit avalanche mix, so neighbouring cells get unrelated bits; the cheap corner hash of
+//! the gradient noises; PCG for single words. Wrapping arithmetic only.
 
 /// Avalanche mix of 32 bits.
 #[inline(always)]
