@@ -222,6 +222,27 @@ fn ball_segment(o: [f32; 3], d: [f32; 3], len: f32) -> Option<(f32, f32)> {
     (t0 < t1).then_some((t0, t1))
 }
 
+/// The clouds' density profile: the ball times `1 + fbm` at [`CLOUD_SCALE`] noise units per
+/// unit, for an image of `size` pixels (the band-limited variants' footprint). Linear in the
+/// noise (no clamp), so the estimators stay unbiased.
+fn ball_fbm(
+    p: [f32; 3],
+    size: usize,
+    basis: Basis,
+    f: Fractal,
+    seed: u32,
+    rng: &mut Rng,
+    v: Variant,
+) -> f32 {
+    let shape = ball(p);
+    if shape == 0.0 {
+        return 0.0;
+    }
+    let q = p.map(|c| c * CLOUD_SCALE);
+    let foot = CLOUD_SCALE / size as f32;
+    shape * (1.0 + fbm(basis, v, q, f, foot, seed, &mut || rng.uniform()))
+}
+
 /// The demo's cloud: single scattering, ratio tracking (see the module docs).
 pub struct SingleScatter {
     /// Image side.
@@ -235,17 +256,7 @@ const CLOUD_MAJORANT: f32 = 12.0;
 
 impl SingleScatter {
     fn density(&self, p: [f32; 3], rng: &mut Rng, v: Variant) -> f32 {
-        let shape = ball(p);
-        if shape == 0.0 {
-            return 0.0;
-        }
-        let q = p.map(|c| c * CLOUD_SCALE);
-        let foot = CLOUD_SCALE / self.size as f32;
-        let n = fbm(Basis::Perlin, v, q, CLOUD_FBM, foot, 3, &mut || {
-            rng.uniform()
-        });
-        // Linear in the noise (no clamp), so the estimators stay unbiased.
-        6.0 * shape * (1.0 + n)
+        6.0 * ball_fbm(p, self.size, Basis::Perlin, CLOUD_FBM, 3, rng, v)
     }
 
     /// Ratio-tracking transmittance from `o` along `d` over length `len`, over the part of it
@@ -319,14 +330,7 @@ impl PaperCloud {
     pub const OPTIMISED: f32 = 1.55;
 
     fn density(&self, p: [f32; 3], rng: &mut Rng, v: Variant) -> f32 {
-        let shape = ball(p);
-        if shape == 0.0 {
-            return 0.0;
-        }
-        let q = p.map(|c| c * CLOUD_SCALE);
-        let foot = CLOUD_SCALE / self.size as f32;
-        let n = fbm(self.basis, v, q, PAPER_FBM, foot, 5, &mut || rng.uniform());
-        PAPER_DENSITY * shape * (1.0 + n)
+        PAPER_DENSITY * ball_fbm(p, self.size, self.basis, PAPER_FBM, 5, rng, v)
     }
 
     fn sigma_bar(&self) -> f32 {

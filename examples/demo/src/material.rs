@@ -52,19 +52,9 @@ impl Material {
         Material { size, xi: Xi::Stbn }
     }
 
-    /// The variants compared in this scene.
+    /// The variants compared in this scene: those of the clouds, band-limited ones included.
     pub fn variants() -> Vec<Variant> {
-        vec![
-            Variant::Deterministic,
-            Variant::Stochastic,
-            Variant::Tail(1),
-            Variant::Tail(2),
-            Variant::Tail(3),
-            Variant::TailOctave(1),
-            Variant::TailOctave(2),
-            Variant::BandLimited,
-            Variant::TailBandLimited(2),
-        ]
+        crate::cloud::variants(true)
     }
 
     /// The `k`-th number of pixel `(x, y)` in frame `s`.
