@@ -110,6 +110,9 @@ fn pairs() -> Vec<Pair> {
             |p| Fbm::new(Fractal::new(6, 2.0, -0.5), 3).sample(p),
             |p, x| Fbm::new(Fractal::new(6, 2.0, -0.5), 3).estimate_octave(p, 0, x),
         ),
+        ("fbm_sparse_conv3 octave (1 exact)", fbm_sparse, |p, x| {
+            SparseConvolutionFbm::new(FBM_SPARSE, 6, 3).estimate_octave(p, 1, x)
+        }),
         ("fbm_sparse_conv3 tail (2 exact)", fbm_sparse, |p, x| {
             SparseConvolutionFbm::new(FBM_SPARSE, 6, 3).estimate_tail(p, 2, x)
         }),

@@ -26,9 +26,7 @@ use crate::equal_time::{self, Row};
 use build_assets::export::png::write_slices;
 use build_assets::spec::Format;
 use build_assets::texture::Texture;
-use noisebake::stochastic::{
-    Fbm, Fractal, SparseConvolution, SparseConvolutionFbm, fractal_tail_stochastic, octave_seed,
-};
+use noisebake::stochastic::{Fbm, Fractal, SparseConvolutionFbm};
 use rayon::prelude::*;
 use std::path::Path;
 
@@ -132,14 +130,9 @@ pub fn fbm(
             SparseConvolutionFbm::new(f, n, seed).estimate_tail(q, k, xi())
         }
         (Variant::TailOctave(k), Basis::Perlin) => Fbm::new(f, seed).estimate_octave(q, k, xi()),
-        (Variant::TailOctave(k), Basis::Sparse(n)) => fractal_tail_stochastic(
-            q,
-            f,
-            k,
-            xi(),
-            |q, o| SparseConvolution::new(n, octave_seed(seed, o)).sample(q),
-            |q, o, _| SparseConvolution::new(n, octave_seed(seed, o)).sample(q),
-        ),
+        (Variant::TailOctave(k), Basis::Sparse(n)) => {
+            SparseConvolutionFbm::new(f, n, seed).estimate_octave(q, k, xi())
+        }
     }
 }
 

@@ -339,7 +339,7 @@ impl SparseConvolutionFbm {
         sparse::fbm_sparse_conv3_stochastic1(p, self.fractal, self.impulses, self.seed, xi)
     }
 
-    /// The first `exact` octaves exact, one octave of the rest sampled.
+    /// The first `exact` octaves exact, one octave of the rest sampled, one impulse per cell.
     #[must_use]
     #[inline]
     pub fn estimate_tail(self, p: [f32; 3], exact: u32, xi: f32) -> f32 {
@@ -351,6 +351,17 @@ impl SparseConvolutionFbm {
             self.seed,
             xi,
         )
+    }
+
+    /// The first `exact` octaves exact, one octave of the rest chosen by ξ and evaluated
+    /// exactly (as [`Fbm::estimate_octave`]).
+    #[must_use]
+    #[inline]
+    pub fn estimate_octave(self, p: [f32; 3], exact: u32, xi: f32) -> f32 {
+        let octave = |q: [f32; 3], o: u32| {
+            sparse::sparse_conv3(q, self.impulses, fractal::octave_seed(self.seed, o))
+        };
+        fractal::fractal_tail_stochastic(p, self.fractal, exact, xi, octave, |q, o, _| octave(q, o))
     }
 }
 
