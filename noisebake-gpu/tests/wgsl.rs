@@ -69,8 +69,21 @@ fn run(g: &Gpu, kernel: &str, input: &[u8], n: usize, out_bytes: usize) -> Vec<u
     .remove(0)
 }
 
-/// The index of the invocation over a 2D grid of workgroups (4096 wide).
-const INDEX: &str = "let i = id.x + id.y * 4096u * 64u;";
+/// A compute kernel over an input array of `input` at binding 0, the `bindings` declared after
+/// it, and `body` run for every input index `i` (invocations over a 2D grid of workgroups, 4096
+/// wide; those past the input's end return).
+fn kernel(input: &str, bindings: &str, body: &str) -> String {
+    format!(
+        "@group(0) @binding(0) var<storage, read> inp: array<{input}>;
+         {bindings}
+         @compute @workgroup_size(64)
+         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+             let i = id.x + id.y * 4096u * 64u;
+             if (i >= arrayLength(&inp)) {{ return; }}
+             {body}
+         }}"
+    )
+}
 
 #[test]
 fn library_passes_naga_validation() {
@@ -123,14 +136,11 @@ fn integer_functions_match_bit_for_bit() {
         .collect();
     let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
     const OUT: usize = 16;
-    let kernel = format!(
-        "@group(0) @binding(0) var<storage, read> inp: array<vec4<i32>>;
-         @group(0) @binding(1) var<storage, read_write> outp: array<u32>;
-         @compute @workgroup_size(64)
-         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
-             {INDEX}
-             if (i >= arrayLength(&inp)) {{ return; }}
-             let p = inp[i];
+    let kernel = kernel(
+        "vec4<i32>",
+        "@group(0) @binding(1) var<storage, read_write> outp: array<u32>;",
+        &format!(
+            "let p = inp[i];
              let f = bitcast<u32>(p.z);
              let k = bitcast<u32>(p.w);
              let o = i * {OUT}u;
@@ -152,8 +162,8 @@ fn integer_functions_match_bit_for_bit() {
              let b = nb_mask_coord_k(p.xyz, vec3<u32>(64u, 32u, 16u), k);
              outp[o + 14u] = b.x + 64u * (b.y + 32u * b.z);
              let c = nb_mask4_coord_k(vec4<i32>(p.xyz, p.x ^ p.y), vec4<u32>(8u, 8u, 3u, 5u), k);
-             outp[o + 15u] = c.x + 8u * (c.y + 8u * c.z);
-         }}"
+             outp[o + 15u] = c.x + 8u * (c.y + 8u * c.z);"
+        ),
     );
     let out = words(&run(g, &kernel, &bytes_of(&flat), N, N * OUT * 4));
     let odd = address_mask::<37, 64, 13>();
@@ -225,17 +235,12 @@ fn ign_matches_within_two_to_the_minus_23() {
         .map(|_| [rng.coord(), rng.coord(), rng.i32(), 0])
         .collect();
     let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
-    let kernel = format!(
-        "@group(0) @binding(0) var<storage, read> inp: array<vec4<i32>>;
-         @group(0) @binding(1) var<storage, read_write> outp: array<f32>;
-         @compute @workgroup_size(64)
-         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
-             {INDEX}
-             if (i >= arrayLength(&inp)) {{ return; }}
-             let p = inp[i];
+    let kernel = kernel(
+        "vec4<i32>",
+        "@group(0) @binding(1) var<storage, read_write> outp: array<f32>;",
+        "let p = inp[i];
              outp[2u * i] = nb_ign(p.xy);
-             outp[2u * i + 1u] = nb_ign_frame(p.xy, bitcast<u32>(p.z));
-         }}"
+             outp[2u * i + 1u] = nb_ign_frame(p.xy, bitcast<u32>(p.z));",
     );
     let out = floats(&run(g, &kernel, &bytes_of(&flat), N, N * 8));
     let mut worst = 0.0f32;
@@ -305,19 +310,16 @@ fn noise_kernel() -> String {
             b = 3 + 2 * j
         );
     }
-    format!(
-        "@group(0) @binding(0) var<storage, read> inp: array<vec4<f32>>;
-         @group(0) @binding(1) var<storage, read_write> outp: array<f32>;
-         @compute @workgroup_size(64)
-         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
-             {INDEX}
-             if (i >= arrayLength(&inp)) {{ return; }}
-             let p = inp[i];
+    kernel(
+        "vec4<f32>",
+        "@group(0) @binding(1) var<storage, read_write> outp: array<f32>;",
+        &format!(
+            "let p = inp[i];
              let o = i * {NOISE_OUT}u;
              outp[o] = nb_perlin3(p.xyz, 7u);
              outp[o + 1u] = nb_perlin3_estimate(p.xyz, 7u, p.w);
-             {body}
-         }}"
+             {body}"
+        ),
     )
 }
 
@@ -405,16 +407,11 @@ fn cnj_closest_point_matches() {
         })
         .collect();
     let flat: Vec<f32> = queries.iter().flatten().copied().collect();
-    let kernel = format!(
-        "@group(0) @binding(0) var<storage, read> inp: array<vec2<f32>>;
-         @group(0) @binding(1) var<storage, read_write> outp: array<vec4<f32>>;
-         @compute @workgroup_size(64)
-         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
-             {INDEX}
-             if (i >= arrayLength(&inp)) {{ return; }}
-             let n = nb_cnj2_closest(nb_cnj2_paper(), inp[i]);
-             outp[i] = vec4<f32>(n.point, bitcast<f32>(n.site.x), bitcast<f32>(n.site.y));
-         }}"
+    let kernel = kernel(
+        "vec2<f32>",
+        "@group(0) @binding(1) var<storage, read_write> outp: array<vec4<f32>>;",
+        "let n = nb_cnj2_closest(nb_cnj2_paper(), inp[i]);
+             outp[i] = vec4<f32>(n.point, bitcast<f32>(n.site.x), bitcast<f32>(n.site.y));",
     );
     let n = queries.len();
     let out = floats(&run(g, &kernel, &bytes_of(&flat), n, n * 16));
@@ -502,20 +499,19 @@ fn check_mask_format<T: noisebake::Texel>(g: &Gpu, seed: u64) {
     } else {
         ("f32", "nb_mask_load", "v.x")
     };
-    let kernel = format!(
-        "@group(0) @binding(0) var<storage, read> inp: array<vec4<i32>>;
-         @group(0) @binding(1) var<storage, read_write> outp: array<vec4<u32>>;
-         @group(0) @binding(2) var<storage, read_write> units: array<f32>;
-         @group(0) @binding(3) var mask: texture_2d_array<{ty}>;
-         @compute @workgroup_size(64)
-         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
-             {INDEX}
-             if (i >= arrayLength(&inp)) {{ return; }}
-             let p = inp[i];
+    let kernel = kernel(
+        "vec4<i32>",
+        &format!(
+            "@group(0) @binding(1) var<storage, read_write> outp: array<vec4<u32>>;
+             @group(0) @binding(2) var<storage, read_write> units: array<f32>;
+             @group(0) @binding(3) var mask: texture_2d_array<{ty}>;"
+        ),
+        &format!(
+            "let p = inp[i];
              let v = {load}(mask, p.xyz, bitcast<u32>(p.w));
              outp[i] = bitcast<vec4<u32>>(v);
-             units[i] = {unit};
-         }}"
+             units[i] = {unit};"
+        ),
     );
     let m = inputs.len();
     let groups = m.div_ceil(64) as u32;
