@@ -168,3 +168,189 @@ const CNJ3: [u32; 12] = [
     0x3e9f56ac, 0x3fc8f7e6, 0xc0252836, 0x42f5e88f, 0xc29dd035, 0x3d662528, 0xc61c4045, 0x459c3f8e,
     0x4203851a, 0x3e042303, 0x3e04c45e, 0xbe76f53f,
 ];
+
+/// Inputs for the fingerprints: every triple of values that are hard for the lattice split
+/// (±0, the smallest subnormal, integers and their neighbouring floats, the edge of the fast
+/// split's range 2^22, coordinates far beyond it, ±∞, NaN), then random points at three
+/// scales; with ξ cycling through odd values (0, −0, just below 1, 1, 2, −1, NaN) and random
+/// ones.
+fn fingerprint_inputs() -> Vec<([f32; 4], f32)> {
+    let hard = [
+        0.0f32,
+        -0.0,
+        1e-45,
+        1.0,
+        f32::from_bits(1.0f32.to_bits() + 1),
+        -1.0,
+        -2.5,
+        4_194_303.5,
+        -4_194_304.0,
+        1e7,
+        -3e38,
+        f32::INFINITY,
+        f32::NAN,
+    ];
+    let odd_xi = [0.0f32, -0.0, 0.99999994, 1.0, 2.0, -1.0, f32::NAN];
+    let mut s = 0x0123_4567_89ab_cdefu64;
+    let mut next = move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 40) as f32 / 16_777_216.0
+    };
+    let n = hard.len();
+    let mut v = Vec::new();
+    for i in 0..n * n * n {
+        let p = [
+            hard[i % n],
+            hard[i / n % n],
+            hard[i / n / n],
+            hard[(i * 7) % n],
+        ];
+        let xi = if i % 2 == 0 {
+            odd_xi[i / 2 % odd_xi.len()]
+        } else {
+            next()
+        };
+        v.push((p, xi));
+    }
+    for scale in [3.0f32, 500.0, 3e6] {
+        for _ in 0..3000 {
+            let p = [0; 4].map(|_| (next() - 0.5) * scale);
+            v.push((p, next()));
+        }
+    }
+    v
+}
+
+/// FNV-1a over the bits of every output.
+fn fingerprint(mut f: impl FnMut([f32; 4], f32) -> f32) -> u64 {
+    fingerprint_inputs()
+        .into_iter()
+        .fold(0xcbf2_9ce4_8422_2325, |h, (p, xi)| {
+            (h ^ f(p, xi).to_bits() as u64).wrapping_mul(0x100_0000_01b3)
+        })
+}
+
+/// Every noise, deterministic and estimator, 2D to 4D, at ten thousand inputs including the
+/// hard ones above, folded into one number each: the explicit pins above show values, these
+/// catch a change anywhere, also far outside the fast paths' ranges and on the portable path.
+#[test]
+fn every_noise_is_pinned_by_fingerprint() {
+    let p2 = |p: [f32; 4]| [p[0], p[1]];
+    let p3 = |p: [f32; 4]| [p[0], p[1], p[2]];
+    let gabor = GaborNoise::new(Gabor::default(), 7);
+    let got: Vec<(&str, u64)> = vec![
+        ("perlin2", fingerprint(|p, _| Perlin::new(7).sample(p2(p)))),
+        ("perlin3", fingerprint(|p, _| Perlin::new(7).sample(p3(p)))),
+        ("perlin4", fingerprint(|p, _| Perlin::new(7).sample(p))),
+        (
+            "perlin2 estimate",
+            fingerprint(|p, x| Perlin::new(7).estimate(p2(p), x)),
+        ),
+        (
+            "perlin3 estimate",
+            fingerprint(|p, x| Perlin::new(7).estimate(p3(p), x)),
+        ),
+        (
+            "perlin4 estimate",
+            fingerprint(|p, x| Perlin::new(7).estimate(p, x)),
+        ),
+        (
+            "perlin3 gradient",
+            fingerprint(|p, _| Perlin::new(7).gradient(p3(p)).1[1]),
+        ),
+        (
+            "simplex2",
+            fingerprint(|p, _| Simplex::new(7).sample(p2(p))),
+        ),
+        (
+            "simplex3",
+            fingerprint(|p, _| Simplex::new(7).sample(p3(p))),
+        ),
+        ("simplex4", fingerprint(|p, _| Simplex::new(7).sample(p))),
+        (
+            "simplex3 estimate",
+            fingerprint(|p, x| Simplex::new(7).estimate(p3(p), x)),
+        ),
+        (
+            "simplex4 estimate",
+            fingerprint(|p, x| Simplex::new(7).estimate(p, x)),
+        ),
+        (
+            "fbm3",
+            fingerprint(|p, _| Fbm::new(Fractal::default(), 7).sample(p3(p))),
+        ),
+        (
+            "fbm3 estimate",
+            fingerprint(|p, x| Fbm::new(Fractal::default(), 7).estimate(p3(p), x)),
+        ),
+        (
+            "fbm3 odd estimate",
+            fingerprint(|p, x| Fbm::new(Fractal::new(5, 2.5, 0.6), 7).estimate(p3(p), x)),
+        ),
+        (
+            "sparse3",
+            fingerprint(|p, _| SparseConvolution::new(6, 7).sample(p3(p))),
+        ),
+        (
+            "sparse3 estimate",
+            fingerprint(|p, x| SparseConvolution::new(6, 7).estimate(p3(p), x)),
+        ),
+        ("gabor3", fingerprint(|p, _| gabor.sample(p3(p)))),
+        (
+            "gabor3 estimate",
+            fingerprint(|p, x| gabor.estimate(p3(p), x)),
+        ),
+        (
+            "smooth voronoi",
+            fingerprint(|p, _| SmoothVoronoi::new(7).sample(p3(p))),
+        ),
+        (
+            "smooth voronoi estimate",
+            fingerprint(|p, x| SmoothVoronoi::new(7).estimate(p3(p), x)),
+        ),
+        ("worley f1", fingerprint(|p, _| Worley::new(7).f1(p3(p)))),
+    ];
+    let got_table: Vec<String> = got
+        .iter()
+        .map(|(n, h)| format!("(\"{n}\", {h:#018x}),"))
+        .collect();
+    if std::env::var_os("NOISEBAKE_PRINT_PINS").is_some() {
+        println!("PIN fingerprints:\n{}", got_table.join("\n"));
+        return;
+    }
+    assert_eq!(got.len(), FINGERPRINTS.len());
+    for (&(name, h), &(want_name, want)) in got.iter().zip(FINGERPRINTS.iter()) {
+        assert_eq!(name, want_name);
+        assert_eq!(
+            h, want,
+            "{name} changed (fingerprint {h:#018x}, pinned {want:#018x})"
+        );
+    }
+}
+
+const FINGERPRINTS: [(&str, u64); 22] = [
+    ("perlin2", 0x50d27b71aff50a97),
+    ("perlin3", 0x362bb67204687e79),
+    ("perlin4", 0x86a2b3545cb5c661),
+    ("perlin2 estimate", 0xbdda984f15a01cf0),
+    ("perlin3 estimate", 0x9c9934386532d00d),
+    ("perlin4 estimate", 0x2a77a7cb762c4107),
+    ("perlin3 gradient", 0x676f4352336ac3f4),
+    ("simplex2", 0x5f6fea845fa18cb7),
+    ("simplex3", 0x02e6993569ef0855),
+    ("simplex4", 0xa9b49d7e3e0a1059),
+    ("simplex3 estimate", 0x530c0f59241a611c),
+    ("simplex4 estimate", 0x2542b6820f7a5fc8),
+    ("fbm3", 0xf57c6bc754c640cf),
+    ("fbm3 estimate", 0x59caa1f683a6fed3),
+    ("fbm3 odd estimate", 0xd24acc9e6a4eec83),
+    ("sparse3", 0x7f1d2cb6e8b94cc0),
+    ("sparse3 estimate", 0xb69ed9570add7859),
+    ("gabor3", 0xce0fac8fd73c121c),
+    ("gabor3 estimate", 0x8f75f0e214a09833),
+    ("smooth voronoi", 0x2df408ea7ae096fc),
+    ("smooth voronoi estimate", 0xdb1fa98b5702159f),
+    ("worley f1", 0x85a29ab3030db7ee),
+];
