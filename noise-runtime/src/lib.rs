@@ -63,16 +63,7 @@ extern crate std;
 pub mod cnj;
 pub mod coord;
 pub mod hash;
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
-#[allow(unsafe_code)]
 mod lanes;
-#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
-#[allow(unsafe_code)]
-mod lanes8;
 pub mod ldg;
 pub mod mask;
 pub mod math;

@@ -111,20 +111,8 @@ pub fn exp_neg(x: f32) -> f32 {
     p * f32::from_bits(bits)
 }
 
-/// Coefficients of the degree-5 Chebyshev fit to `2^r` on `[−½, ½]` (relative error below
-/// 1.1e-7), constant term first: [`exp2_neg`]'s polynomial. (The linear one, 0.693 147 188,
-/// rounds to the float `ln 2`.)
-pub(crate) const EXP2_POLY: [f32; 6] = [
-    1.000_000_1,
-    core::f32::consts::LN_2,
-    0.240_221_08,
-    0.055_503_57,
-    0.009_676_032,
-    0.001_339_086_3,
-];
-
 /// `2^y` for `y ∈ [−125, 0]` (the caller clamps), in f32 with relative error below 3e-7:
-/// `2^k · 2^r` for the nearest integer `k` and `r ∈ [−½, ½]`, `2^r` by [`EXP2_POLY`] in
+/// `2^k · 2^r` for the nearest integer `k` and `r ∈ [−½, ½]`, `2^r` by the polynomial of the lane form in
 /// Estrin's scheme, whose chain of dependent operations is 6 long instead of Horner's 10.
 /// For `k ≥ −125` the result is a normal float (no slow subnormal arithmetic).
 #[inline(always)]
@@ -132,7 +120,7 @@ pub(crate) fn exp2_neg(y: f32) -> f32 {
     debug_assert!((-125.0..=0.0).contains(&y), "y = {y}");
     let k = y.round_ties_even_noneg();
     let r = y - k;
-    let c = EXP2_POLY;
+    let c = crate::lanes::EXP2_POLY;
     let r2 = r * r;
     let p = (c[0] + c[1] * r) + r2 * ((c[2] + c[3] * r) + r2 * (c[4] + c[5] * r));
     p * f32::from_bits(((k as i32 + 127) as u32) << 23)
@@ -222,70 +210,16 @@ pub fn cos_turns(u: f32) -> f32 {
 /// bits.
 #[inline(always)]
 pub fn sqrt(x: f32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    {
-        crate::lanes::sqrt1(x)
-    }
-    #[cfg(not(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    )))]
-    {
-        sqrt_soft(x)
-    }
+    crate::lanes::sqrt1(x)
 }
 
 /// [`sqrt`] without a square-root instruction: the same bits on every target, for targets
-/// where `core` offers none (`f32::sqrt` needs `std`).
-///
-/// The classic bit-level guess of `1/√x` refined by three Newton steps gives a root `r` within
-/// a few ulps; then `r` steps to its neighbour while `x` lies outside the squares of the
-/// midpoints between `r` and its neighbours. Those midpoints have 25 significant bits, so
-/// their squares are exact in f64, and never equal to an f32 `x` (the square of an odd 25-bit
-/// integer has 49 or 50 bits): the test decides the correctly rounded root.
+/// where `core` offers none (`f32::sqrt` needs `std`). It is the portable lane backend's
+/// root (a Newton-refined guess, then corrected to the rounded root; see there).
 #[inline]
 #[doc(hidden)]
 pub fn sqrt_soft(x: f32) -> f32 {
-    if x.is_nan() || x <= 0.0 {
-        return 0.0;
-    }
-    if x == f32::INFINITY {
-        return x;
-    }
-    // A subnormal times 2^24 is normal, and its root times 2^-12 is the root: both exact.
-    let (x, scale) = if x < f32::MIN_POSITIVE {
-        (x * 16_777_216.0, 1.0 / 4096.0)
-    } else {
-        (x, 1.0)
-    };
-    let mut y = f32::from_bits(0x5f37_5a86u32.wrapping_sub(x.to_bits() >> 1));
-    let h = 0.5 * x;
-    y *= 1.5 - h * y * y;
-    y *= 1.5 - h * y * y;
-    y *= 1.5 - h * y * y;
-    let mut r = x * y;
-    let xd = x as f64;
-    // The guess is within 3 ulps (the tests check every input class); 8 steps bound the loop.
-    for _ in 0..8 {
-        let (down, up) = (
-            f32::from_bits(r.to_bits() - 1),
-            f32::from_bits(r.to_bits() + 1),
-        );
-        let (lo, hi) = ((r as f64 + down as f64) * 0.5, (r as f64 + up as f64) * 0.5);
-        if xd < lo * lo {
-            r = down;
-        } else if xd > hi * hi {
-            r = up;
-        } else {
-            break;
-        }
-    }
-    r * scale
+    crate::lanes::scalar::sqrt1(x)
 }
 
 /// `⌊v⌋` for finite `v` (NaN passes through; |v| ≥ 2^52 is already integral).

@@ -1,7 +1,7 @@
 //! Batch forms: 3D Perlin noise and its fBm, deterministic and as estimators, over a slice of
-//! points at once. On an x86_64 CPU with AVX2 (asked once at run time) eight points share each
-//! instruction, as the pixels of a GPU warp do; elsewhere the single-point functions run one
-//! point after another. Either way each output is, **bit for bit**, what the single-point
+//! points at once, eight points sharing each instruction as the pixels of a GPU warp do: one
+//! kernel per function over the lane layer's eight-lane operations, compiled for AVX2 on an
+//! x86_64 CPU that has it (asked once at run time) and portably elsewhere. Either way each output is, **bit for bit**, what the single-point
 //! function returns for that point (and ξ), so a renderer can switch freely between them.
 //!
 //! What the batch buys is the absolute time (`noisebake report stochastic` prints each batch
@@ -30,17 +30,18 @@
 use super::fractal::{Fractal, fbm3, fbm3_stochastic};
 use super::perlin::{perlin3, perlin3_stochastic};
 
-#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
-mod avx2;
+use crate::lanes::scalar::Portable8;
 
-/// Which code evaluates a batch: the eight-lane kernels, or the single-point functions.
+mod kernels;
+
+/// Which backend of the lane layer runs the batch kernels.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Path {
     /// AVX2 lanes, with the token that proves the CPU has them.
     #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
-    Avx2(crate::lanes8::Avx2),
-    /// One point at a time.
-    Scalar,
+    Avx2(crate::lanes::avx2::Avx2),
+    /// The same kernels with the portable eight-lane operations.
+    Portable,
 }
 
 impl Path {
@@ -48,10 +49,52 @@ impl Path {
     #[inline]
     pub(crate) fn best() -> Path {
         #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
-        if let Some(cpu) = crate::lanes8::Avx2::detect() {
+        if let Some(cpu) = crate::lanes::avx2::Avx2::detect() {
             return Path::Avx2(cpu);
         }
-        Path::Scalar
+        Path::Portable
+    }
+}
+
+/// The kernels compiled for AVX2: each entry point instantiates its kernel with the token, so
+/// that the whole kernel (every helper is `#[inline(always)]`) is compiled with the feature.
+#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
+mod avx2 {
+    use super::kernels;
+    use crate::lanes::avx2::Avx2;
+    use crate::stochastic::Fractal;
+
+    #[target_feature(enable = "avx2")]
+    pub(super) fn perlin3(cpu: Avx2, points: &[[f32; 3]], seed: u32, out: &mut [f32]) {
+        kernels::perlin3(cpu, points, seed, out)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub(super) fn perlin3_stochastic(
+        cpu: Avx2,
+        points: &[[f32; 3]],
+        seed: u32,
+        xi: &[f32],
+        out: &mut [f32],
+    ) {
+        kernels::perlin3_stochastic(cpu, points, seed, xi, out)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub(super) fn fbm3(cpu: Avx2, points: &[[f32; 3]], f: Fractal, seed: u32, out: &mut [f32]) {
+        kernels::fbm3(cpu, points, f, seed, out)
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub(super) fn fbm3_stochastic(
+        cpu: Avx2,
+        points: &[[f32; 3]],
+        f: Fractal,
+        seed: u32,
+        xi: &[f32],
+        out: &mut [f32],
+    ) {
+        kernels::fbm3_stochastic(cpu, points, f, seed, xi, out)
     }
 }
 
@@ -107,11 +150,7 @@ pub(crate) fn perlin3_batch_on(
         #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
         // SAFETY: the token exists only on a CPU with AVX2 (`Avx2::detect`).
         Path::Avx2(cpu) => unsafe { avx2::perlin3(cpu, points, seed, out) },
-        Path::Scalar => {
-            for (o, &p) in out.iter_mut().zip(points) {
-                *o = perlin3(p, seed);
-            }
-        }
+        Path::Portable => kernels::perlin3(Portable8, points, seed, out),
     }
     n
 }
@@ -131,11 +170,7 @@ pub(crate) fn perlin3_stochastic_batch_on(
         #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
         // SAFETY: as in `perlin3_batch_on`.
         Path::Avx2(cpu) => unsafe { avx2::perlin3_stochastic(cpu, points, seed, xi, out) },
-        Path::Scalar => {
-            for ((o, &p), &x) in out.iter_mut().zip(points).zip(xi) {
-                *o = perlin3_stochastic(p, seed, x);
-            }
-        }
+        Path::Portable => kernels::perlin3_stochastic(Portable8, points, seed, xi, out),
     }
     n
 }
@@ -155,11 +190,7 @@ pub(crate) fn fbm3_batch_on(
         #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
         // SAFETY: as in `perlin3_batch_on`.
         Path::Avx2(cpu) => unsafe { avx2::fbm3(cpu, points, f, seed, out) },
-        Path::Scalar => {
-            for (o, &p) in out.iter_mut().zip(points) {
-                *o = fbm3(p, f, seed);
-            }
-        }
+        Path::Portable => kernels::fbm3(Portable8, points, f, seed, out),
     }
     n
 }
@@ -182,6 +213,9 @@ pub(crate) fn fbm3_stochastic_batch_on(
         Path::Avx2(cpu) if halving(f) => unsafe {
             avx2::fbm3_stochastic(cpu, points, f, seed, xi, out)
         },
+        Path::Portable if halving(f) => {
+            kernels::fbm3_stochastic(Portable8, points, f, seed, xi, out)
+        }
         _ => {
             for ((o, &p), &x) in out.iter_mut().zip(points).zip(xi) {
                 *o = fbm3_stochastic(p, f, seed, x);
@@ -192,7 +226,6 @@ pub(crate) fn fbm3_stochastic_batch_on(
 }
 
 /// Whether `f` has lacunarity 2 and gain ±½, the fBm whose estimator runs on lanes.
-#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
 fn halving(f: Fractal) -> bool {
     let (_, lac, gain) = f.sane();
     lac == 2.0 && (gain == 0.5 || gain == -0.5)
@@ -205,18 +238,17 @@ mod tests {
     use super::*;
     use std::{format, vec, vec::Vec};
 
-    /// The paths to compare: the scalar one always, AVX2 where this CPU has it.
-    /// The scalar path, and the AVX2 one when this CPU has it — said on stderr when it does not,
-    /// so a green run on a CPU without AVX2 is not mistaken for a tested AVX2 path.
+    /// The portable path, and the AVX2 one when this build and CPU have it — said on stderr
+    /// when they do not, so a green run without AVX2 is not mistaken for a tested AVX2 path.
     fn paths() -> impl Iterator<Item = Path> {
         let best = Path::best();
-        let two = !matches!(best, Path::Scalar);
+        let two = !matches!(best, Path::Portable);
         if !two {
             std::eprintln!(
-                "NOTE: no AVX2 path on this build or CPU: only the scalar batch path was tested"
+                "SKIPPED: no AVX2 path on this build or CPU: only the portable batch path was tested"
             );
         }
-        [Path::Scalar, best].into_iter().take(1 + two as usize)
+        [Path::Portable, best].into_iter().take(1 + two as usize)
     }
 
     /// Points that are hard for the split and the range checks, mixed into batches with

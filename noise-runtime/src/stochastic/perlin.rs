@@ -58,7 +58,6 @@ const GRAD3_ROWS: [[f32; 4]; 16] = [
 
 /// [`GRAD3`] by columns: `GRAD3_COLUMNS[a][j >> 3][j & 7]` is axis `a` of gradient `j`, for
 /// the batch forms, which read one axis of eight gradients at a time.
-#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
 pub(super) const GRAD3_COLUMNS: [[[f32; 8]; 2]; 3] = {
     let mut c = [[[0.0f32; 8]; 2]; 3];
     let mut j = 0;

@@ -1,15 +1,14 @@
-//! Four `f32` lanes in one SSE2 register, for the hot paths of gradient noise on x86_64.
+//! The SSE2 backend: four `f32` lanes in one register.
 //!
-//! SSE2 is part of the x86_64 baseline, so this module is compiled whenever the target has it
-//! (`cfg(target_feature = "sse2")`, set for every x86_64 target unless a build turns it off),
-//! and elsewhere the scalar forms run. It is the only module of the crate with `unsafe`: Rust
-//! requires it around a call of a `#[target_feature]` intrinsic even when the feature is
-//! statically enabled. Each block is one such call on register values; no pointer is read or
-//! written, so the only precondition is the feature itself, which the `cfg` guarantees.
+//! SSE2 is part of the x86_64 baseline, so this backend is chosen whenever the target has it
+//! (`cfg(target_feature = "sse2")`, set for every x86_64 target unless a build turns it off)
+//! and the `portable` feature is off. Rust requires `unsafe` around a call of a
+//! `#[target_feature]` intrinsic even when the feature is statically enabled; each block here
+//! is one such call on register values, no pointer is read or written, so the only
+//! precondition is the feature itself, which the `cfg` guarantees.
 //!
-//! Each operation is, lane by lane, exactly the IEEE operation of its scalar counterpart in
-//! [`math`](crate::math), in the same order, so a function written on lanes returns the same
-//! bits as its scalar form; the tests of the callers compare the two.
+//! Each operation is, lane by lane, exactly the IEEE operation of its sibling in the portable
+//! backend ([`scalar`](super::scalar)); the tests in [`lanes`](super) compare the two.
 //!
 //! Why by hand: LLVM vectorises little of the scalar forms. In the 3D Perlin estimator it kept
 //! the three fades and one lane of the split scalar (169 instructions a call, against 118 on
@@ -34,17 +33,6 @@ macro_rules! lane_getters {
         #[inline(always)]
         pub(crate) fn $name(self) -> f32 {
             unsafe { _mm_cvtss_f32(_mm_shuffle_ps::<$imm>(self.0, self.0)) }
-        }
-    )*};
-}
-
-/// Methods `fn name(self) -> F4` rearranging the lanes by a shuffle immediate.
-macro_rules! swizzles {
-    ($($(#[$doc:meta])* $name:ident = $imm:literal;)*) => {$(
-        $(#[$doc])*
-        #[inline(always)]
-        pub(crate) fn $name(self) -> F4 {
-            F4(unsafe { _mm_shuffle_ps::<$imm>(self.0, self.0) })
         }
     )*};
 }
@@ -93,19 +81,6 @@ impl F4 {
         z = 0xaa;
         /// Lane 3.
         w = 0xff;
-    }
-
-    swizzles! {
-        /// Lane 0 in every lane.
-        xxxx = 0x00;
-        /// Lane 1 in every lane.
-        yyyy = 0x55;
-        /// Lane 2 in every lane.
-        zzzz = 0xaa;
-        /// Lanes 0 and 2 (twice).
-        xzxz = 0b10_00_10_00;
-        /// Lanes 1 and 3 (twice).
-        ywyw = 0b11_01_11_01;
     }
 
     /// `if self < o { self } else { o }` per lane (`minps`; `o` where either is NaN).
@@ -161,38 +136,11 @@ impl F4 {
         }
     }
 
-    /// `[r0.sum4(), r1.sum4(), r2.sum4(), r3.sum4()]`, by a transpose.
-    #[inline(always)]
-    pub(crate) fn sums4(r: [F4; 4]) -> F4 {
-        let [x, y, z, w] = F4::transpose(r);
-        (x + y) + (z + w)
-    }
-
     /// `shufps`: lanes 0 and 1 from `a`, 2 and 3 from `b`, each picked by two bits of `IMM`
     /// (lane 0's from bits 0–1, up to lane 3's from bits 6–7).
     #[inline(always)]
     pub(crate) fn shuffle<const IMM: i32>(a: F4, b: F4) -> F4 {
         F4(unsafe { _mm_shuffle_ps::<IMM>(a.0, b.0) })
-    }
-
-    /// Lanes 0 and 2 of `a`, then lanes 0 and 2 of `b`.
-    #[inline(always)]
-    pub(crate) fn evens(a: F4, b: F4) -> F4 {
-        F4(unsafe { _mm_shuffle_ps::<0b10_00_10_00>(a.0, b.0) })
-    }
-
-    /// Lanes 1 and 3 of `a`, then lanes 1 and 3 of `b`.
-    #[inline(always)]
-    pub(crate) fn odds(a: F4, b: F4) -> F4 {
-        F4(unsafe { _mm_shuffle_ps::<0b11_01_11_01>(a.0, b.0) })
-    }
-
-    /// `[r0.sum3(), r1.sum3(), r2.sum3(), r3.sum3()]`, by a transpose: four dot products'
-    /// sums in two adds.
-    #[inline(always)]
-    pub(crate) fn sums3(r: [F4; 4]) -> F4 {
-        let [x, y, z, _] = F4::transpose(r);
-        (x + y) + z
     }
 
     /// The columns of the rows `r`: lane `a` of every row, for `a` = 0…3.
@@ -213,10 +161,24 @@ impl F4 {
         }
     }
 
-    /// `a + t·(b − a)` on each lane, the scalar `lerp`.
+    /// The bits of each lane.
     #[inline(always)]
-    pub(crate) fn lerp(t: F4, a: F4, b: F4) -> F4 {
-        a + t * (b - a)
+    pub(crate) fn to_bits(self) -> I4 {
+        I4(unsafe { _mm_castps_si128(self.0) })
+    }
+
+    /// Each lane truncated to an integer (`cvttps2dq`: `i32::MIN` for NaN and out of range).
+    #[inline(always)]
+    pub(crate) fn trunc(self) -> I4 {
+        I4(unsafe { _mm_cvttps_epi32(self.0) })
+    }
+
+    /// The square root of each lane, for lanes that are finite and neither negative nor −0
+    /// (squared distances): `sqrtps`, correctly rounded like the portable root, whose special
+    /// cases change nothing there.
+    #[inline(always)]
+    pub(crate) fn sqrt(self) -> F4 {
+        F4(unsafe { _mm_sqrt_ps(self.0) })
     }
 }
 
@@ -267,6 +229,24 @@ impl I4 {
         I4(unsafe { _mm_set_epi32(v[3] as i32, v[2] as i32, v[1] as i32, v[0] as i32) })
     }
 
+    /// `v` in every lane.
+    #[inline(always)]
+    pub(crate) fn splat(v: u32) -> I4 {
+        I4(unsafe { _mm_set1_epi32(v as i32) })
+    }
+
+    /// Each lane shifted left by `S`.
+    #[inline(always)]
+    pub(crate) fn shl<const S: i32>(self) -> I4 {
+        I4(unsafe { _mm_slli_epi32::<S>(self.0) })
+    }
+
+    /// The lanes' bits as `f32` lanes.
+    #[inline(always)]
+    pub(crate) fn from_bits(self) -> F4 {
+        F4(unsafe { _mm_castsi128_ps(self.0) })
+    }
+
     /// All ones in each lane greater than `v` (as signed integers), else 0.
     #[inline(always)]
     pub(crate) fn greater(self, v: i32) -> I4 {
@@ -277,12 +257,6 @@ impl I4 {
     #[inline(always)]
     pub(crate) fn and(self, o: I4) -> I4 {
         I4(unsafe { _mm_and_si128(self.0, o.0) })
-    }
-
-    /// 1.0 in each lane of the mask `self` that is all ones, 0.0 where it is 0.
-    #[inline(always)]
-    pub(crate) fn ones(self) -> F4 {
-        F4(unsafe { _mm_and_ps(_mm_castsi128_ps(self.0), _mm_set1_ps(1.0)) })
     }
 
     /// The xor of the four lanes.
@@ -348,13 +322,6 @@ impl I4 {
             ]
         }
     }
-
-    /// Lanes 0, 1 and 2 as `u32`.
-    #[inline(always)]
-    pub(crate) fn xyz(self) -> [u32; 3] {
-        let [x, y, z, _] = self.xyzw();
-        [x, y, z]
-    }
 }
 
 /// [`in_split_range`](crate::math::in_split_range) of all four lanes: the same add per lane,
@@ -393,29 +360,6 @@ pub(crate) fn split_in_range(v: F4) -> (I4, F4) {
     }
 }
 
-/// [`fade`](crate::math::fade) on each lane, in the same order of operations.
-#[inline(always)]
-pub(crate) fn fade(t: F4) -> F4 {
-    let t3 = t * t * t;
-    t3 * (t * (t * F4::splat(6.0) - F4::splat(15.0)) + F4::splat(10.0))
-}
-
-/// The bits of `1 + t` minus those of 1 on each lane: `t · 2^23` rounded, the fixed point of
-/// the estimators' corner choice (`estimators::fixed`).
-#[inline(always)]
-pub(crate) fn fixed(t: F4) -> I4 {
-    let one = t + F4::splat(1.0);
-    I4(unsafe { _mm_sub_epi32(_mm_castps_si128(one.0), _mm_set1_epi32(0x3f80_0000)) })
-}
-
-/// [`sqrt`](crate::math::sqrt) on each lane, for lanes that are finite and neither negative
-/// nor −0 (squared distances): `sqrtps`, correctly rounded like the scalar form, whose special
-/// cases change nothing there.
-#[inline(always)]
-pub(crate) fn sqrt(x: F4) -> F4 {
-    F4(unsafe { _mm_sqrt_ps(x.0) })
-}
-
 /// `t as i32` for a `t` known to be in range (`|t| < 2^31`): `cvttss2si` alone, without the
 /// checks of the saturating `as` (NaN and out-of-range give `i32::MIN`).
 #[inline(always)]
@@ -423,28 +367,9 @@ pub(crate) fn trunc1(t: f32) -> i32 {
     unsafe { _mm_cvttss_si32(_mm_set_ss(t)) }
 }
 
-/// [`sqrt`](crate::math::sqrt) of one value: `sqrtss` of `max(x, 0)`, where `maxss` gives its
+/// The square root of one value: `sqrtss` of `max(x, 0)`, where `maxss` gives its
 /// second operand, +0, for NaN, −0 and negative `x`.
 #[inline(always)]
 pub(crate) fn sqrt1(x: f32) -> f32 {
     unsafe { _mm_cvtss_f32(_mm_sqrt_ss(_mm_max_ss(_mm_set_ss(x), _mm_setzero_ps()))) }
-}
-
-/// [`exp2_neg`](crate::math::exp2_neg) on each lane (each in `[−125, 0]`): the same
-/// operations in the same order.
-#[inline(always)]
-pub(crate) fn exp2_neg(y: F4) -> F4 {
-    const MAGIC: f32 = 12_582_912.0;
-    let k = (y + F4::splat(MAGIC)) - F4::splat(MAGIC);
-    let r = y - k;
-    let c = crate::math::EXP2_POLY.map(F4::splat);
-    let r2 = r * r;
-    let p = (c[0] + c[1] * r) + r2 * ((c[2] + c[3] * r) + r2 * (c[4] + c[5] * r));
-    let scale = unsafe {
-        _mm_castsi128_ps(_mm_slli_epi32::<23>(_mm_add_epi32(
-            _mm_cvttps_epi32(k.0),
-            _mm_set1_epi32(127),
-        )))
-    };
-    p * F4(scale)
 }

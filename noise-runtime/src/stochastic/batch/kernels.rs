@@ -1,17 +1,22 @@
-//! The batch kernels on eight AVX2 lanes: each step of the single-point function as a plain
-//! loop over `[f32; 8]`, which LLVM compiles to one AVX2 instruction, plus the lane
-//! operations of [`Avx2`] it does not make well itself (the gradient table read, the
-//! fixed-point cut and decision of the corner choice, the range mask). The helpers are
-//! `#[inline(always)]` so that they, and their loops, are compiled inside the
-//! `#[target_feature(enable = "avx2")]` entry points; they take the [`Avx2`] token that the
-//! lane operations require. A lane whose coordinates leave the split range (`|x| ≥ 2^22`,
-//! NaN, infinite) is computed again by the single-point function, which handles it exactly.
+//! The batch kernels on eight lanes, one per algorithm for every target: each step of the
+//! single-point function as a plain loop over `[f32; 8]`, which LLVM compiles to one vector
+//! instruction (AVX2, or two SSE2 or NEON ones), plus the [`Lanes8`] operations it does not
+//! make well itself (the gradient table read, the fixed-point cut and decision of the corner
+//! choice, the range mask). Everything is `#[inline(always)]` and generic over the
+//! [`Lanes8`] implementation, so that it is compiled inside each entry point: inside the
+//! `#[target_feature(enable = "avx2")]` ones of `batch::avx2` with the [`Avx2`] token, and
+//! inside the portable ones with [`Portable8`]. A lane whose coordinates leave the split range
+//! (`|x| ≥ 2^22`, NaN, infinite) is computed again by the single-point function, which
+//! handles it exactly.
+//!
+//! [`Avx2`]: crate::lanes::avx2::Avx2
+//! [`Portable8`]: crate::lanes::scalar::Portable8
 
 use super::super::estimators::{fixed, sanitize_xi};
 use super::super::fractal::{Fractal, octave_seed};
 use super::super::perlin::GRAD3_COLUMNS;
 use crate::hash::{CORNER_MUL, PRIME};
-use crate::lanes8::{Avx2, F8, U8};
+use crate::lanes::{F8, Lanes8, U8};
 use crate::math::{fade, split_in_range};
 
 /// Lanes per register.
@@ -34,7 +39,7 @@ fn columns(p: &[[f32; 3]; W]) -> [F8; 3] {
 /// Bit `i` set when lane `i` of `p` is outside the split range (the test of
 /// [`in_split_range`](crate::math::in_split_range), lane by lane).
 #[inline(always)]
-fn outside(cpu: Avx2, p: &[F8; 3]) -> u32 {
+fn outside<L: Lanes8>(cpu: L, p: &[F8; 3]) -> u32 {
     let mut any = [0u32; W];
     for c in p {
         for i in 0..W {
@@ -62,7 +67,7 @@ fn split(p: &[F8; 3]) -> ([U8; 3], [F8; 3]) {
 /// `g · d` for the gradients of corner hashes `h` (before their finishing multiply), in the
 /// single-point form's order `(gx·dx + gy·dy) + gz·dz`.
 #[inline(always)]
-fn gradient_dot(cpu: Avx2, h: &U8, dx: &F8, dy: &F8, dz: &F8) -> F8 {
+fn gradient_dot<L: Lanes8>(cpu: L, h: &U8, dx: &F8, dy: &F8, dz: &F8) -> F8 {
     let mut j = [0u32; W];
     for i in 0..W {
         j[i] = h[i].wrapping_mul(CORNER_MUL) >> 28;
@@ -80,7 +85,7 @@ fn gradient_dot(cpu: Avx2, h: &U8, dx: &F8, dy: &F8, dz: &F8) -> F8 {
 /// [`perlin3`](super::super::perlin3) of eight points in the split range: the lane form's
 /// (`perlin::sse::perlin3_in_range`) products and sums, lane by lane.
 #[inline(always)]
-fn perlin3_lanes(cpu: Avx2, p: &[F8; 3], seed: u32) -> F8 {
+fn perlin3_lanes<L: Lanes8>(cpu: L, p: &[F8; 3], seed: u32) -> F8 {
     let (cell, f) = split(p);
     let mut t = [[0.0f32; W]; 3];
     let mut f1 = [[0.0f32; W]; 3];
@@ -116,8 +121,8 @@ fn perlin3_lanes(cpu: Avx2, p: &[F8; 3], seed: u32) -> F8 {
 /// The corners `(0, y, z)` and `(1, y, z)` of [`perlin3_lanes`] lerped along x by `tx`:
 /// `side[a][s]` is axis `a`'s hash product on side `s`, `d[s][a]` the offset from side `s`.
 #[inline(always)]
-fn edge(
-    cpu: Avx2,
+fn edge<L: Lanes8>(
+    cpu: L,
     seed: u32,
     side: &[[U8; 2]; 3],
     d: &[[F8; 3]; 2],
@@ -146,7 +151,12 @@ fn edge(
 /// every ξ is known to lie in `[0, 1)` (a remapped one), where sanitising changes nothing
 /// and is left out (`Narrowing::new_unit`).
 #[inline(always)]
-fn perlin3_stochastic_lanes<const UNIT: bool>(cpu: Avx2, p: &[F8; 3], seed: &U8, xi: &F8) -> F8 {
+fn perlin3_stochastic_lanes<L: Lanes8, const UNIT: bool>(
+    cpu: L,
+    p: &[F8; 3],
+    seed: &U8,
+    xi: &F8,
+) -> F8 {
     let (cell, f) = split(p);
     // Weights and ξ in the corner choice's fixed point (`estimators::fixed`).
     let mut t = [[0u32; W]; 3];
@@ -231,9 +241,9 @@ macro_rules! fix_lanes {
     };
 }
 
-/// [`perlin3_batch`](super::perlin3_batch) on AVX2 lanes (`points` and `out` of one length).
-#[target_feature(enable = "avx2")]
-pub(super) fn perlin3(cpu: Avx2, points: &[[f32; 3]], seed: u32, out: &mut [f32]) {
+/// [`perlin3_batch`](super::perlin3_batch) on eight lanes (`points` and `out` of one length).
+#[inline(always)]
+pub(super) fn perlin3<L: Lanes8>(cpu: L, points: &[[f32; 3]], seed: u32, out: &mut [f32]) {
     chunks!(
         points,
         out,
@@ -242,11 +252,11 @@ pub(super) fn perlin3(cpu: Avx2, points: &[[f32; 3]], seed: u32, out: &mut [f32]
     );
 }
 
-/// [`perlin3_stochastic_batch`](super::perlin3_stochastic_batch) on AVX2 lanes (slices of one
+/// [`perlin3_stochastic_batch`](super::perlin3_stochastic_batch) on eight lanes (slices of one
 /// length).
-#[target_feature(enable = "avx2")]
-pub(super) fn perlin3_stochastic(
-    cpu: Avx2,
+#[inline(always)]
+pub(super) fn perlin3_stochastic<L: Lanes8>(
+    cpu: L,
     points: &[[f32; 3]],
     seed: u32,
     xi: &[f32],
@@ -257,18 +267,18 @@ pub(super) fn perlin3_stochastic(
         xi,
         out,
         |p, x| (
-            perlin3_stochastic_lanes::<false>(cpu, &p, &[seed; W], x),
+            perlin3_stochastic_lanes::<L, false>(cpu, &p, &[seed; W], x),
             outside(cpu, &p)
         ),
         |i| super::perlin3_stochastic(points[i], seed, xi[i])
     );
 }
 
-/// [`fbm3_batch`](super::fbm3_batch) on AVX2 lanes: `fbm3`'s octaves in its order, each
+/// [`fbm3_batch`](super::fbm3_batch) on eight lanes: `fbm3`'s octaves in its order, each
 /// octave's points on lanes (a lane outside the split range at some octave takes the
 /// single-point Perlin noise for that octave).
-#[target_feature(enable = "avx2")]
-pub(super) fn fbm3(cpu: Avx2, points: &[[f32; 3]], f: Fractal, seed: u32, out: &mut [f32]) {
+#[inline(always)]
+pub(super) fn fbm3<L: Lanes8>(cpu: L, points: &[[f32; 3]], f: Fractal, seed: u32, out: &mut [f32]) {
     let (n, lac, gain) = f.sane();
     chunks!(
         points,
@@ -304,16 +314,16 @@ pub(super) fn fbm3(cpu: Avx2, points: &[[f32; 3]], f: Fractal, seed: u32, out: &
     );
 }
 
-/// [`fbm3_stochastic_batch`](super::fbm3_stochastic_batch) on AVX2 lanes, for lacunarity 2
+/// [`fbm3_stochastic_batch`](super::fbm3_stochastic_batch) on eight lanes, for lacunarity 2
 /// and gain ±½ (the caller checks). Each lane's octave is the one `fractal::OctavePick`
 /// picks, here read off the exponent of `2 − target` (exact, by Sterbenz's lemma): a target
 /// in `[2 − 2^−k, 2 − 2^−(k+1))` lies in octave `k + 1`, and then `2 − target` lies in
 /// `(2^−(k+1), 2^−k]`, whose exponent `e` gives `k = −e`, or `−e − 1` when `2 − target` is
 /// not a power of two. Then the octave's estimator on lanes, each lane with its own
 /// octave's frequency, seed and remapped ξ.
-#[target_feature(enable = "avx2")]
-pub(super) fn fbm3_stochastic(
-    cpu: Avx2,
+#[inline(always)]
+pub(super) fn fbm3_stochastic<L: Lanes8>(
+    cpu: L,
     points: &[[f32; 3]],
     f: Fractal,
     seed: u32,
@@ -353,7 +363,7 @@ pub(super) fn fbm3_stochastic(
                     q[a][i] = p[a][i] * freq;
                 }
             }
-            let v = perlin3_stochastic_lanes::<true>(cpu, &q, &seeds, &remapped);
+            let v = perlin3_stochastic_lanes::<L, true>(cpu, &q, &seeds, &remapped);
             let mut s = [0.0f32; W];
             for i in 0..W {
                 s[i] = f32::from_bits((total * v[i]).to_bits() ^ ((negative & octave[i]) << 31));
