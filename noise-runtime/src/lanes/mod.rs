@@ -291,7 +291,7 @@ mod tests {
                 "shuffle",
                 a,
                 f(sse2::F4::shuffle::<0b01_11_10_00>(sa, sb)),
-                { scalar::F4::shuffle::<0b01_11_10_00>(pa, pb).0 },
+                scalar::F4::shuffle::<0b01_11_10_00>(pa, pb).0,
             );
             let st = sse2::F4::transpose([sa, sb, sb, sa]);
             let pt = scalar::F4::transpose([pa, pb, pb, pa]);

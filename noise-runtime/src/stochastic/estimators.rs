@@ -48,7 +48,7 @@ pub fn pick(xi: &mut f32, t: f32) -> bool {
 /// never taken, and there is no `0/0` to guard. Each weight is rounded to a multiple of 2^-23
 /// and each cut floors, so a corner's probability is off by at most `D · 2^-23` (f32 rounding
 /// in the remap is of the same order). `D` is at most 4.
-#[inline(always)]
+#[cfg(test)]
 pub(crate) fn nested_corner<const D: usize>(xi: f32, t: [f32; D]) -> Corner<D> {
     const { assert!(D >= 1 && D <= 4) };
     let mut n = Narrowing::new(xi);
@@ -77,11 +77,6 @@ impl Narrowing {
 
     /// [`Narrowing::new`] for a ξ known to lie in `[0, 1)` (a remapped one), the same state
     /// without the sanitising steps, which would change nothing.
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
     #[inline(always)]
     pub(crate) fn new_unit(xi: f32) -> Self {
         const ONE: u64 = 1 << FIXED_BITS;
@@ -92,8 +87,10 @@ impl Narrowing {
         }
     }
 
-    /// One decision with weight `t ∈ [0, 1]`: all ones when the upper side was taken.
-    #[inline(always)]
+    /// One decision with weight `t ∈ [0, 1]`: all ones when the upper side was taken. (The
+    /// kernels make the weights' fixed points four at a time and call
+    /// [`upper_fixed`](Self::upper_fixed); this is the tests' reference form.)
+    #[cfg(test)]
     pub(crate) fn upper(&mut self, t: f32) -> u32 {
         self.upper_fixed(fixed(t))
     }
@@ -160,6 +157,7 @@ pub(crate) fn fixed(t: f32) -> u64 {
 }
 
 /// The corner [`nested_corner`] chose: per axis, all ones when it took its upper side, else 0.
+#[cfg(test)]
 #[derive(Clone, Copy)]
 pub(crate) struct Corner<const D: usize>([u32; D]);
 
@@ -180,6 +178,7 @@ static UNIT: [[f32; 4]; 16] = {
     t
 };
 
+#[cfg(test)]
 impl<const D: usize> Corner<D> {
     /// 1 if axis `a` took its upper side, else 0.
     #[cfg(test)]

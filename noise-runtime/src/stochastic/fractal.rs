@@ -248,18 +248,7 @@ pub fn octave_seed(seed: u32, o: u32) -> u32 {
 /// fBm of 3D Perlin noise (each octave with its own seed).
 #[inline(always)]
 pub fn fbm3(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    return fbm3_lanes(p, f, seed);
-    #[cfg(not(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    )))]
-    fractal(p, f, |q, o| super::perlin::perlin3(q, octave_seed(seed, o)))
+    fbm3_lanes(p, f, seed)
 }
 
 /// [`fbm3`] with the point kept in one register: each octave scales it by its frequency
@@ -267,11 +256,6 @@ pub fn fbm3(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
 /// [`perlin3`](super::perlin3)'s lane form. The same products and sums as [`fractal`], so the
 /// same bits (lane 3 of the register is 0 times the frequency, which the lane form ignores).
 /// (Ten octaves: 1618 instead of 1745 instructions a call, 4.5 % faster.)
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
 #[inline(always)]
 fn fbm3_lanes(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
     use crate::lanes::F4;
@@ -280,7 +264,7 @@ fn fbm3_lanes(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
     let (mut amp, mut freq, mut sum) = (1.0f32, 1.0f32, 0.0f32);
     for o in 0..n {
         let q = v * F4::splat(freq);
-        sum += amp * super::perlin::sse::perlin3_lanes(q, octave_seed(seed, o));
+        sum += amp * super::perlin::lanes::perlin3_lanes(q, octave_seed(seed, o));
         amp *= gain;
         freq *= lac;
     }
@@ -291,11 +275,6 @@ fn fbm3_lanes(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
 /// one dot product whatever the octave count.
 #[inline(always)]
 pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
     if let Some(v) = fbm3_stochastic_halving(p, f, seed, xi) {
         return v;
     }
@@ -340,11 +319,6 @@ pub fn fbm3_octave_stochastic(p: [f32; 3], f: Fractal, exact: u32, seed: u32, xi
 /// mantissa, so it is exact, and so is the power-of-two scaling.) The split of `p · 2^o`
 /// would otherwise wait for the octave, and the estimator's time is that chain: 2.5–3 ns
 /// of 22.
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
 #[inline(always)]
 fn fbm3_stochastic_halving(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> Option<f32> {
     use crate::lanes::{self, F4};
@@ -364,7 +338,8 @@ fn fbm3_stochastic_halving(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> Optio
     let off = (cell_q.mod_pow2(s).to_f32() + f_q) * F4::splat(pow2(-(s as i32)));
     // The remapped ξ is in [0, 1) by construction, so it needs no sanitising.
     let n = super::estimators::Narrowing::new_unit(k.xi);
-    let v = super::perlin::sse::perlin3_stochastic_cell(cell, off, octave_seed(seed, k.octave), n);
+    let v =
+        super::perlin::lanes::perlin3_stochastic_cell(cell, off, octave_seed(seed, k.octave), n);
     Some(k.scale(v))
 }
 

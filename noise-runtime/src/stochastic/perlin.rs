@@ -4,16 +4,11 @@
 //! corner with probability equal to its interpolation weight, and only that corner's gradient
 //! is evaluated.
 
-use super::estimators::{Narrowing, fresh_corner2, nested_corner, unit_corner};
+use super::estimators::{Narrowing, fresh_corner2, unit_corner};
 use crate::hash::{CORNER_MUL, PRIME, corner};
 use crate::math::{dfade, fade, split};
 
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
-pub(super) mod sse;
+pub(super) mod lanes;
 
 #[inline(always)]
 fn lerp(t: f32, a: f32, b: f32) -> f32 {
@@ -218,69 +213,7 @@ fn perlin2_stochastic_with(p: [f32; 2], seed: u32, xi: f32, sp: impl Fn(f32) -> 
 /// 3D Perlin noise (improved noise), about `[-1, 1]`.
 #[inline(always)]
 pub fn perlin3(p: [f32; 3], seed: u32) -> f32 {
-    // One predictable branch buys guard-free splits for every ordinary coordinate.
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    if let Some(v) = sse::perlin3(p, seed) {
-        return v;
-    }
-    #[cfg(not(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    )))]
-    if crate::math::in_split_range(p) {
-        return perlin3_with(p, seed, crate::math::split_in_range);
-    }
-    perlin3_with(p, seed, split)
-}
-
-/// The hash products of a 3D cell's corners, per axis: `i·PRIME[a]` on the lower side and
-/// `(i + 1)·PRIME[a] = i·PRIME[a] + PRIME[a]` on the upper. A corner's hash is then one xor
-/// and one multiply ([`corner`]).
-#[inline(always)]
-fn cell_products(ix: i32, iy: i32, iz: i32) -> ([u32; 3], [u32; 3]) {
-    let xp = (ix as u32).wrapping_mul(PRIME[0]);
-    let yp = (iy as u32).wrapping_mul(PRIME[1]);
-    let zp = (iz as u32).wrapping_mul(PRIME[2]);
-    (
-        [xp, yp, zp],
-        [
-            xp.wrapping_add(PRIME[0]),
-            yp.wrapping_add(PRIME[1]),
-            zp.wrapping_add(PRIME[2]),
-        ],
-    )
-}
-
-#[inline(always)]
-fn perlin3_with(p: [f32; 3], seed: u32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
-    let (ix, x) = sp(p[0]);
-    let (iy, y) = sp(p[1]);
-    let (iz, z) = sp(p[2]);
-    let (u, v, w) = (fade(x), fade(y), fade(z));
-    let (x1, y1, z1) = (x - 1.0, y - 1.0, z - 1.0);
-    let ([ix, iy, iz], [ix1, iy1, iz1]) = cell_products(ix, iy, iz);
-    let c = |xp: u32, yp: u32, zp: u32, dx: f32, dy: f32, dz: f32| {
-        let g = g3(corner(seed, xp, yp, zp));
-        g[0] * dx + g[1] * dy + g[2] * dz
-    };
-    lerp(
-        w,
-        lerp(
-            v,
-            lerp(u, c(ix, iy, iz, x, y, z), c(ix1, iy, iz, x1, y, z)),
-            lerp(u, c(ix, iy1, iz, x, y1, z), c(ix1, iy1, iz, x1, y1, z)),
-        ),
-        lerp(
-            v,
-            lerp(u, c(ix, iy, iz1, x, y, z1), c(ix1, iy, iz1, x1, y, z1)),
-            lerp(u, c(ix, iy1, iz1, x, y1, z1), c(ix1, iy1, iz1, x1, y1, z1)),
-        ),
-    )
+    lanes::perlin3(p, seed)
 }
 
 /// 3D Perlin noise and its analytic gradient.
@@ -324,91 +257,7 @@ pub fn perlin3_grad_cell(cell: [i32; 3], f: [f32; 3], seed: u32) -> (f32, [f32; 
 /// One-sample estimator of [`perlin3`] (Algorithm 1 in 3D): one gradient instead of eight.
 #[inline(always)]
 pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    if let Some(v) = sse::perlin3_stochastic(p, seed, xi) {
-        return v;
-    }
-    #[cfg(not(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    )))]
-    if crate::math::in_split_range(p) {
-        return perlin3_stochastic_in_range(p, seed, xi);
-    }
-    perlin3_stochastic_with(p, seed, xi, split)
-}
-
-/// [`perlin3_stochastic_with`] for coordinates in the split range, the same bits. The split
-/// runs over four lanes (the fourth a padding 0) and takes the cells as `u32` before their
-/// products: LLVM then keeps the three products as scalar multiplies, where the three-lane
-/// form had two of them packed into an emulated SIMD multiply (pmuludq and shuffles) and took
-/// 7 % longer. Its tail repeats the general form's on purpose: shared through one helper (or
-/// one generic body), the two tails were merged and the packed multiply came back. In this
-/// four-lane form the masked split ([`split_in_range`](crate::math::split_in_range)) stays
-/// free of branches (LLVM vectorises its compare).
-// On x86_64 the lane form in `sse` runs instead; this one is the code on other targets and,
-// here, the reference the lane form's test compares with.
-#[cfg_attr(
-    all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ),
-    allow(dead_code)
-)]
-#[inline(always)]
-fn perlin3_stochastic_in_range(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    let v = [p[0], p[1], p[2], 0.0];
-    let mut cell = [0u32; 4];
-    let mut f = [0.0f32; 4];
-    for a in 0..4 {
-        let (c, fa) = crate::math::split_in_range(v[a]);
-        cell[a] = c as u32;
-        f[a] = fa;
-    }
-    let t = [fade(f[0]), fade(f[1]), fade(f[2])];
-    let mut n = Narrowing::new(xi);
-    let mut h = seed;
-    let mut k = 0;
-    for a in 0..3 {
-        let up = n.upper(t[a]);
-        h ^= cell[a].wrapping_mul(PRIME[a]).wrapping_add(up & PRIME[a]);
-        k |= (up & 1) << a;
-    }
-    let g = g3(h.wrapping_mul(CORNER_MUL));
-    let o = unit_corner(k);
-    let d: [f32; 4] = core::array::from_fn(|a| g[a] * (f[a] - o[a]));
-    d[0] + d[1] + d[2]
-}
-
-#[inline(always)]
-fn perlin3_stochastic_with(p: [f32; 3], seed: u32, xi: f32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
-    let (ix, x) = sp(p[0]);
-    let (iy, y) = sp(p[1]);
-    let (iz, z) = sp(p[2]);
-    let cell = [ix, iy, iz];
-    let t = [fade(x), fade(y), fade(z)];
-    // Only the chosen corner is hashed, axis by axis as it is chosen: the lower side's product
-    // plus, when the upper side was taken, the axis prime under the decision's mask — an add,
-    // no multiply and no select after the decision.
-    let mut n = Narrowing::new(xi);
-    let mut h = seed;
-    let mut k = 0;
-    for a in 0..3 {
-        let up = n.upper(t[a]);
-        h ^= (cell[a] as u32)
-            .wrapping_mul(PRIME[a])
-            .wrapping_add(up & PRIME[a]);
-        k |= (up & 1) << a;
-    }
-    let g = g3(h.wrapping_mul(CORNER_MUL));
-    let o = unit_corner(k);
-    g[0] * (x - o[0]) + g[1] * (y - o[1]) + g[2] * (z - o[2])
+    lanes::perlin3_stochastic(p, seed, xi)
 }
 
 /// A 4D point's offset in its cell and the hash products of the cell's lower corner per axis,
@@ -453,45 +302,7 @@ fn corner_masks(c: usize) -> [u32; 4] {
 /// 4D Perlin noise (e.g. 3D noise animated over time).
 #[inline(always)]
 pub fn perlin4(p: [f32; 4], seed: u32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    if let Some(v) = sse::perlin4(p, seed) {
-        return v;
-    }
-    #[cfg(not(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    )))]
-    if crate::math::in_split_range(p) {
-        return perlin4_with(p, seed, crate::math::split_in_range);
-    }
-    perlin4_with(p, seed, split)
-}
-
-#[inline(always)]
-fn perlin4_with(p: [f32; 4], seed: u32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
-    let (lo, f) = split4(p, sp);
-    let u = f.map(fade);
-    // Corner `c` has bit `a` set on the upper side of axis `a`. Written out as nested lerps
-    // (x first, then y, z, w), not as a loop collapsing a table of 16 values, which LLVM left
-    // rolled (116 ns a call instead of 49).
-    let corner = |c: usize| {
-        let o: [f32; 4] = core::array::from_fn(|a| ((c >> a) & 1) as f32);
-        dot4(grad4(lo, corner_masks(c), seed), f, o)
-    };
-    let x = |c: usize| lerp(u[0], corner(c), corner(c + 1));
-    let cube = |w: usize| {
-        lerp(
-            u[2],
-            lerp(u[1], x(w), x(w + 2)),
-            lerp(u[1], x(w + 4), x(w + 6)),
-        )
-    };
-    lerp(u[3], cube(0), cube(8))
+    lanes::perlin4(p, seed)
 }
 
 /// 4D Perlin noise and its analytic gradient `(∂n/∂x, ∂n/∂y, ∂n/∂z, ∂n/∂w)`: the value is
@@ -523,30 +334,7 @@ pub fn perlin4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 /// One-sample estimator of [`perlin4`]: one gradient instead of sixteen.
 #[inline(always)]
 pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    if let Some(v) = sse::perlin4_stochastic(p, seed, xi) {
-        return v;
-    }
-    #[cfg(not(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    )))]
-    if crate::math::in_split_range(p) {
-        return perlin4_stochastic_with(p, seed, xi, crate::math::split_in_range);
-    }
-    perlin4_stochastic_with(p, seed, xi, split)
-}
-
-#[inline(always)]
-fn perlin4_stochastic_with(p: [f32; 4], seed: u32, xi: f32, sp: impl Fn(f32) -> (i32, f32)) -> f32 {
-    let (lo, f) = split4(p, sp);
-    let c = nested_corner(xi, f.map(fade));
-    dot4(grad4(lo, c.masks(), seed), f, c.floats())
+    lanes::perlin4_stochastic(p, seed, xi)
 }
 
 #[cfg(test)]
@@ -564,7 +352,7 @@ mod tests {
     /// The gradient row the lower corner of the 3D cell `c` gets in [`perlin3`] (the top four
     /// bits of its corner hash).
     fn index3(c: [i32; 3], seed: u32) -> usize {
-        let ([x, y, z], _) = cell_products(c[0], c[1], c[2]);
+        let [x, y, z] = [0, 1, 2].map(|a| (c[a] as u32).wrapping_mul(PRIME[a]));
         (corner(seed, x, y, z) >> 28) as usize
     }
 
