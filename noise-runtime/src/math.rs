@@ -1,6 +1,8 @@
 //! The little floating-point math the runtime needs, without `std` or `libm`: square root,
 //! sine/cosine of an angle given in turns, and `fract` — all total on finite inputs.
 
+use crate::lanes::{self, F4, I4};
+
 /// `(sin 2πu, cos 2πu)` for an angle in turns; any finite `u` (reduced exactly to `[-½, ½]`).
 #[inline]
 pub fn sincos_turns(u: f32) -> (f32, f32) {
@@ -291,6 +293,30 @@ fn nearest(x: f32) -> (i32, f32) {
     (
         y.to_bits().wrapping_sub(MAGIC.to_bits()) as i32,
         x - (y - MAGIC),
+    )
+}
+
+/// The cells and offsets of the four lanes of `v`, as [`split_in_range`] gives them when every
+/// lane is in its range (the common case, split on lanes) and as [`split`] gives them
+/// otherwise (huge, infinite or NaN coordinates; one predictable branch). The split of every
+/// lane kernel.
+#[inline(always)]
+pub(crate) fn split_lanes(v: F4) -> (I4, F4) {
+    if lanes::in_split_range(v) {
+        lanes::split_in_range(v)
+    } else {
+        split_lanes_any(v)
+    }
+}
+
+/// [`split`] per lane, for points outside the split range.
+#[cold]
+#[inline(never)]
+fn split_lanes_any(v: F4) -> (I4, F4) {
+    let s = [v.x(), v.y(), v.z(), v.w()].map(split);
+    (
+        I4::new(s.map(|(c, _)| c as u32)),
+        F4::from4(s.map(|(_, f)| f)),
     )
 }
 

@@ -8,9 +8,9 @@
 //! of its offsets, a weight's support from a `max`, the gradient from a table, and the
 //! estimator's corner from a count of compares. On random points the first 3D form's branches
 //! (the simplex's six cases, a corner's support, the gradient's cases) mispredicted several
-//! times a call. The scalar forms of every dimension and the gradients are written once, for
-//! any dimension, in [`lattice`]; on x86_64 the 3D and 4D pairs run as lane forms in `sse`,
-//! bit for bit the scalar ones.
+//! times a call. The 2D forms and the gradients of every dimension are written once, for any
+//! dimension, in [`lattice`]; the 3D and 4D pairs run on the lane layer (`lanes`), on every
+//! target, and the tests compare them with the general lattice bit for bit.
 
 #[cfg(test)]
 use super::estimators::sanitize_xi;
@@ -19,13 +19,8 @@ use crate::hash::{CORNER_MUL, PRIME, hash3};
 use crate::math::split;
 use lattice::{Corners, Skew};
 
+mod lanes;
 mod lattice;
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
-mod sse;
 
 const G3: f32 = 1.0 / 6.0;
 /// Scale of 3D simplex noise, so that it lies in `[-1, 1]`. The largest value any point can
@@ -49,14 +44,6 @@ fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
 /// first along the largest offset, then the second: axis `a` is in the second corner when its
 /// rank (the number of other offsets it is at least, ties going to the earlier axis) is 2, in
 /// the third when it is at least 1.
-#[cfg(any(
-    test,
-    all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    )
-))]
 #[inline(always)]
 fn rank_order(d0: [f32; 3]) -> ([i32; 3], [i32; 3]) {
     let ge = |a: usize, b: usize| (d0[a] >= d0[b]) as i32;
@@ -140,20 +127,11 @@ static GRAD: [[f32; 3]; 16] = {
 /// 3D simplex noise, in `[-1, 1]`.
 #[inline(always)]
 pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    if let Some(v) = sse::simplex3(p, seed) {
-        return v;
-    }
-    simplex3_scalar(p, seed)
+    lanes::simplex3(p, seed)
 }
 
-/// [`simplex3`] in scalar code: the form off x86_64, and for skewed points out of the split
-/// range there.
-#[inline(always)]
+/// [`simplex3`] on the general lattice ([`lattice`]): the tests' reference for the lane kernel.
+#[cfg(test)]
 fn simplex3_scalar(p: [f32; 3], seed: u32) -> f32 {
     Corners::<3, 4>::new(p, SKEW3).value(SCALE, |c| grad3(c, seed))
 }
@@ -166,19 +144,11 @@ fn simplex3_scalar(p: [f32; 3], seed: u32) -> f32 {
 /// one octave instead of all of them is the saving.
 #[inline(always)]
 pub fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    if let Some(v) = sse::simplex3_stochastic(p, seed, xi) {
-        return v;
-    }
-    simplex3_stochastic_scalar(p, seed, xi)
+    lanes::simplex3_stochastic(p, seed, xi)
 }
 
 /// [`simplex3_stochastic`] in scalar code (see [`simplex3_scalar`]).
-#[inline(always)]
+#[cfg(test)]
 fn simplex3_stochastic_scalar(p: [f32; 3], seed: u32, xi: f32) -> f32 {
     Corners::<3, 4>::new(p, SKEW3).stochastic(SCALE, xi, |c| grad3(c, seed))
 }
@@ -286,20 +256,11 @@ pub fn simplex3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
 /// 4D simplex noise, in `[-1, 1]`: five corners instead of [`perlin4`](super::perlin4)'s 16.
 #[inline(always)]
 pub fn simplex4(p: [f32; 4], seed: u32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    if let Some(v) = sse::simplex4(p, seed) {
-        return v;
-    }
-    simplex4_scalar(p, seed)
+    lanes::simplex4(p, seed)
 }
 
-/// [`simplex4`] in scalar code: the form off x86_64, and for skewed points out of the split
-/// range there.
-#[inline(always)]
+/// [`simplex4`] on the general lattice ([`lattice`]): the tests' reference for the lane kernel.
+#[cfg(test)]
 fn simplex4_scalar(p: [f32; 4], seed: u32) -> f32 {
     Corners::<4, 5>::new(p, SKEW4).value(SCALE4, |c| grad4(c, seed))
 }
@@ -316,19 +277,11 @@ pub fn simplex4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 /// choose the octave stochastically ([`fractal_stochastic`](super::fractal_stochastic)).
 #[inline(always)]
 pub fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    if let Some(v) = sse::simplex4_stochastic(p, seed, xi) {
-        return v;
-    }
-    simplex4_stochastic_scalar(p, seed, xi)
+    lanes::simplex4_stochastic(p, seed, xi)
 }
 
 /// [`simplex4_stochastic`] in scalar code (see [`simplex4_scalar`]).
-#[inline(always)]
+#[cfg(test)]
 fn simplex4_stochastic_scalar(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     Corners::<4, 5>::new(p, SKEW4).stochastic(SCALE4, xi, |c| grad4(c, seed))
 }

@@ -10,30 +10,7 @@
 use super::{GRAD3, GRAD4, Narrowing, PRIME, unit_corner};
 use crate::hash::CORNER_MUL;
 use crate::lanes::{self, F4, I4};
-use crate::math::split;
-
-/// The cells and offsets of a point: on lanes in the split range, by the exact scalar split
-/// per axis outside it (one predictable branch).
-#[inline(always)]
-fn cells(v: F4) -> (I4, F4) {
-    if lanes::in_split_range(v) {
-        lanes::split_in_range(v)
-    } else {
-        split_any(v)
-    }
-}
-
-/// [`split`] per lane, for points outside the split range.
-#[cold]
-#[inline(never)]
-fn split_any(v: F4) -> (I4, F4) {
-    let p = [v.x(), v.y(), v.z(), v.w()];
-    let s = p.map(split);
-    (
-        I4::new(s.map(|(c, _)| c as u32)),
-        F4::from4(s.map(|(_, f)| f)),
-    )
-}
+use crate::math::split_lanes as cells;
 
 /// [`perlin3`](super::perlin3).
 #[inline(always)]

@@ -1,12 +1,13 @@
-//! [`simplex3`](super::simplex3), [`simplex4`](super::simplex4) and their estimators on SSE2
-//! lanes (the [`crate::lanes`] module), for skewed points in the split range: the split as one
+//! [`simplex3`](super::simplex3), [`simplex4`](super::simplex4) and their estimators on the
+//! lane layer ([`crate::lanes`]), the one kernel of each on every target: the split as one
 //! register, the corners' squared distances, weights and gradient dot products as registers
-//! (by transposes). Bit for bit the scalar forms, which remain the code on other targets; the
-//! tests compare the two.
+//! (by transposes). Bit for bit the general lattice's forms ([`lattice`](super::lattice)),
+//! which the tests compare them with.
 
 use super::{G3, GRAD, SCALE, SCALE4, SKEW4, rank_order};
 use crate::hash::{CORNER_MUL, PRIME, hash3};
-use crate::lanes::{self, F4, I4};
+use crate::lanes::{F4, I4};
+use crate::math::split_lanes;
 use crate::stochastic::estimators::{sanitize_xi, unit_corner};
 
 /// [`GRAD`] padded to four lanes, so that a row is one load.
@@ -20,16 +21,12 @@ static GRAD_ROWS: [[f32; 4]; 16] = {
     r
 };
 
-/// The simplex corners of `p` (lattice points and offsets, as `corners` gives them), or
-/// `None` when the skewed point leaves the split range.
+/// The simplex corners of `p` (lattice points and offsets, as `corners` gives them).
 #[inline(always)]
-fn corners(p: [f32; 3]) -> Option<([[i32; 3]; 4], [F4; 4])> {
+fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [F4; 4]) {
     let s = (p[0] + p[1] + p[2]) * (1.0 / 3.0);
     let q = F4::from3([p[0] + s, p[1] + s, p[2] + s]);
-    if !lanes::in_split_range(q) {
-        return None;
-    }
-    let (cell, f) = lanes::split_in_range(q);
+    let (cell, f) = split_lanes(q);
     let d0 = f - F4::splat(f.sum3() * G3);
     let (o1, o2) = rank_order([d0.x(), d0.y(), d0.z()]);
     let bits = |o: [i32; 3]| (o[0] | o[1] << 1 | o[2] << 2) as u32;
@@ -42,10 +39,10 @@ fn corners(p: [f32; 3]) -> Option<([[i32; 3]; 4], [F4; 4])> {
             k.wrapping_add(o[2]),
         ]
     };
-    Some((
+    (
         [at([0, 0, 0]), at(o1), at(o2), at([1, 1, 1])],
         [d0, off(o1, 1.0), off(o2, 2.0), off([1, 1, 1], 3.0)],
-    ))
+    )
 }
 
 /// The four corners' weights `max(½ − r², 0)⁴`.
@@ -61,30 +58,29 @@ fn grad(c: [i32; 3], seed: u32) -> F4 {
     F4::new(&GRAD_ROWS[(hash3(c[0], c[1], c[2], seed) >> 28) as usize])
 }
 
-/// [`simplex3`](super::simplex3), or `None` when the skewed point leaves the split range.
+/// [`simplex3`](super::simplex3).
 #[inline(always)]
-pub(super) fn simplex3(p: [f32; 3], seed: u32) -> Option<f32> {
-    let (c, d) = corners(p)?;
+pub(super) fn simplex3(p: [f32; 3], seed: u32) -> f32 {
+    let (c, d) = corners(p);
     let dots = F4::sums3([0, 1, 2, 3].map(|k| grad(c[k], seed) * d[k]));
     let v = weights(d) * dots;
     // The scalar form's running sum, from 0.0.
-    Some(SCALE * ((((0.0 + v.x()) + v.y()) + v.z()) + v.w()))
+    SCALE * ((((0.0 + v.x()) + v.y()) + v.z()) + v.w())
 }
 
-/// [`simplex3_stochastic`](super::simplex3_stochastic), or `None` when the skewed point
-/// leaves the split range.
+/// [`simplex3_stochastic`](super::simplex3_stochastic).
 #[inline(always)]
-pub(super) fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> Option<f32> {
-    let (c, d) = corners(p)?;
+pub(super) fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
+    let (c, d) = corners(p);
     let w = weights(d);
     let ends = [w.x(), w.x() + w.y(), (w.x() + w.y()) + w.z()];
     let total = ends[2] + w.w();
     if total <= 0.0 {
-        return Some(0.0);
+        return 0.0;
     }
     let target = (sanitize_xi(xi) * total).min(f32::from_bits(total.to_bits() - 1));
     let k = ends.iter().map(|&e| (target >= e) as usize).sum::<usize>() & 3;
-    Some(SCALE * total * (grad(c[k], seed) * d[k]).sum3())
+    SCALE * total * (grad(c[k], seed) * d[k]).sum3()
 }
 
 /// The five corners of the 4D simplex holding a point: per corner, the hash of its lattice
@@ -95,16 +91,12 @@ struct Corners4 {
 }
 
 impl Corners4 {
-    /// The corners of `p`, as `lattice::Corners::<4, 5>` finds them, or `None` when the
-    /// skewed point leaves the split range.
+    /// The corners of `p`, as `lattice::Corners::<4, 5>` finds them.
     #[inline(always)]
-    fn new(p: [f32; 4], seed: u32) -> Option<Self> {
+    fn new(p: [f32; 4], seed: u32) -> Self {
         let v = F4::from4(p);
         let q = v + F4::splat(v.sum4() * SKEW4.skew);
-        if !lanes::in_split_range(q) {
-            return None;
-        }
-        let (cell, f) = lanes::split_in_range(q);
+        let (cell, f) = split_lanes(q);
         let g = SKEW4.unskew;
         let d0 = f - F4::splat(f.sum4() * g);
         let e = [d0.x(), d0.y(), d0.z(), d0.w()];
@@ -129,10 +121,10 @@ impl Corners4 {
         };
         // Spelled out: as `[0, 1, 2, 3, 4].map(corner)` LLVM called the closure per corner.
         let [c1, c2, c3, c4] = [corner(1), corner(2), corner(3), corner(4)];
-        Some(Corners4 {
+        Corners4 {
             h: [seed ^ lo.xor_lanes(), c1.0, c2.0, c3.0, c4.0],
             d: [d0, c1.1, c2.1, c3.1, c4.1],
-        })
+        }
     }
 
     /// Corners 0–3's weights `t⁴`, `t = max(½ − r², 0)`, and corner 4's.
@@ -153,23 +145,22 @@ impl Corners4 {
     }
 }
 
-/// [`simplex4`](super::simplex4), or `None` when the skewed point leaves the split range.
+/// [`simplex4`](super::simplex4).
 #[inline(always)]
-pub(super) fn simplex4(p: [f32; 4], seed: u32) -> Option<f32> {
-    let c = Corners4::new(p, seed)?;
+pub(super) fn simplex4(p: [f32; 4], seed: u32) -> f32 {
+    let c = Corners4::new(p, seed);
     let (w, w4) = c.weights();
     let dot = |k: usize| c.grad(k) * c.d[k];
     let v = w * F4::sums4([dot(0), dot(1), dot(2), dot(3)]);
     let last = w4 * (c.grad(4) * c.d[4]).sum4();
     // The scalar form's running sum, from 0.0.
-    Some(SCALE4 * (((((0.0 + v.x()) + v.y()) + v.z()) + v.w()) + last))
+    SCALE4 * (((((0.0 + v.x()) + v.y()) + v.z()) + v.w()) + last)
 }
 
-/// [`simplex4_stochastic`](super::simplex4_stochastic), or `None` when the skewed point
-/// leaves the split range.
+/// [`simplex4_stochastic`](super::simplex4_stochastic).
 #[inline(always)]
-pub(super) fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> Option<f32> {
-    let c = Corners4::new(p, seed)?;
+pub(super) fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
+    let c = Corners4::new(p, seed);
     let (w, w4) = c.weights();
     let e0 = 0.0 + w.x();
     let e1 = e0 + w.y();
@@ -177,12 +168,12 @@ pub(super) fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> Option<f32
     let e3 = e2 + w.w();
     let total = e3 + w4;
     if total <= 0.0 {
-        return Some(0.0);
+        return 0.0;
     }
     let target = (sanitize_xi(xi) * total).min(f32::from_bits(total.to_bits() - 1));
     let k = [e0, e1, e2, e3].map(|e| (target >= e) as usize);
     let k = (k[0] + k[1] + k[2] + k[3]).min(4);
-    Some(SCALE4 * total * (c.grad(k) * c.d[k]).sum4())
+    SCALE4 * total * (c.grad(k) * c.d[k]).sum4()
 }
 
 #[cfg(test)]
@@ -192,26 +183,23 @@ mod tests {
     };
     use crate::stochastic::estimators::ONE_BELOW;
 
-    /// The lane forms `lane` and `lane_sto` against the scalar forms bit for bit at 200 000
-    /// points from `point(i, next)`, seeds and ξ (hard ones every third point); points whose
-    /// skewed form leaves the split range take the scalar form anyway and are not compared,
-    /// and at least `min` must be compared.
+    /// The lane kernels `lane` and `lane_sto` against the general lattice's forms bit for bit
+    /// at 200 000 points from `point(i, next)` (some far outside the split range), seeds and
+    /// ξ (hard ones every third point).
     #[allow(clippy::type_complexity)]
     fn compare<const N: usize>(
         stream: u64,
         point: impl Fn(usize, &mut dyn FnMut() -> f32) -> [f32; N],
         forms: (
-            fn([f32; N], u32) -> Option<f32>,
             fn([f32; N], u32) -> f32,
-            fn([f32; N], u32, f32) -> Option<f32>,
+            fn([f32; N], u32) -> f32,
+            fn([f32; N], u32, f32) -> f32,
             fn([f32; N], u32, f32) -> f32,
         ),
-        min: usize,
     ) {
         let (lane, scalar, lane_sto, scalar_sto) = forms;
         let mut next = crate::stochastic::uniforms(stream);
         let xis = [0.0f32, -0.0, 1e-30, 0.5, ONE_BELOW, 1.0, 2.0, f32::NAN];
-        let mut compared = 0;
         for i in 0..200_000usize {
             let p = point(i, &mut next);
             let seed = i as u32;
@@ -220,27 +208,32 @@ mod tests {
             } else {
                 next()
             };
-            if let Some(a) = lane(p, seed) {
-                let b = scalar(p, seed);
-                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}: {a} vs {b}");
-                let a = lane_sto(p, seed, xi).unwrap();
-                let b = scalar_sto(p, seed, xi);
-                assert_eq!(a.to_bits(), b.to_bits(), "{p:?}, ξ {xi}: {a} vs {b}");
-                compared += 1;
-            }
+            let (a, b) = (lane(p, seed), scalar(p, seed));
+            assert_eq!(a.to_bits(), b.to_bits(), "{p:?}: {a} vs {b}");
+            let (a, b) = (lane_sto(p, seed, xi), scalar_sto(p, seed, xi));
+            assert_eq!(a.to_bits(), b.to_bits(), "{p:?}, ξ {xi}: {a} vs {b}");
         }
-        assert!(compared > min, "{compared}");
     }
 
-    /// Lattice points and their neighbouring floats up to the edge of the split range:
-    /// coordinate `k` of one of five, and `n` one to three floats above its magnitude.
+    /// Lattice points and their neighbouring floats up to and beyond the edge of the split
+    /// range, infinities and NaN: coordinate `k` of one of eight, and `n` one to three floats
+    /// above its magnitude.
     fn near_lattice(i: usize) -> (f32, f32) {
-        let k = [0.0f32, 1.0, -1.0, 2_097_151.0, -2_097_151.0][i / 4 % 5];
+        let k = [
+            0.0f32,
+            1.0,
+            -1.0,
+            2_097_151.0,
+            -2_097_151.0,
+            -3e9,
+            f32::INFINITY,
+            f32::NAN,
+        ][i / 4 % 8];
         (k, f32::from_bits(k.abs().to_bits() + (i as u32 / 20 % 3)))
     }
 
     #[test]
-    fn lane_forms_are_the_scalar_forms_bit_for_bit() {
+    fn lane_kernels_are_the_lattice_forms_bit_for_bit() {
         // Random points, points where offsets tie (the diagonal, the cells' faces: the rank
         // order's hard cases), lattice points and their neighbouring floats, and the edge of
         // the split range for the skewed point.
@@ -261,11 +254,11 @@ mod tests {
             super::simplex3_stochastic as fn(_, _, _) -> _,
             simplex3_stochastic_scalar as fn(_, _, _) -> _,
         );
-        compare(0x1f83_d9ab_fb41_bd6b, point, forms, 190_000);
+        compare(0x1f83_d9ab_fb41_bd6b, point, forms);
     }
 
     #[test]
-    fn lane_forms_4d_are_the_scalar_forms_bit_for_bit() {
+    fn lane_kernels_4d_are_the_lattice_forms_bit_for_bit() {
         // As in 3D, with the ties of four offsets.
         let point = |i: usize, next: &mut dyn FnMut() -> f32| match i % 4 {
             0 | 1 => [0; 4].map(|_| (next() - 0.5) * 200.0),
@@ -291,7 +284,6 @@ mod tests {
             super::simplex4_stochastic as fn(_, _, _) -> _,
             simplex4_stochastic_scalar as fn(_, _, _) -> _,
         );
-        // The edge points skew out of the split range more often in 4D.
-        compare(0x5be0_cd19_137e_2179, point, forms, 180_000);
+        compare(0x5be0_cd19_137e_2179, point, forms);
     }
 }
