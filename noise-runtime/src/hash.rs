@@ -74,11 +74,6 @@ pub(crate) fn point3(h: u32) -> [f32; 3] {
 }
 
 /// [`point3`] as its padded table row `[x, y, z, 0]`, for a 16-byte lane load.
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
 #[inline(always)]
 pub(crate) fn point3_row(h: u32) -> &'static [f32; 4] {
     &POINTS[(h >> 22) as usize]

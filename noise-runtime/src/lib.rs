@@ -1,10 +1,11 @@
 //! # noise-runtime
 //!
-//! The part of noisebake a game links: `#![no_std]`, no dependencies, and no `unsafe` outside
-//! two private modules that call SIMD intrinsics on x86_64 — SSE2 for the hot paths of 3D and
-//! 4D Perlin, simplex and fBm noise, AVX2 (when the CPU has it, asked at run time) for the
-//! batch forms of 3D Perlin and fBm — and the batch forms' dispatch to them. Either way the
-//! same bits as the scalar code, which runs on every other target.
+//! The part of noisebake a game links: `#![no_std]`, no dependencies. Its SIMD lives in one
+//! private lane layer with sibling backends, glam-style: SSE2 on x86_64 (its baseline), AVX2
+//! for the batch forms when the CPU has it (asked at run time), and a portable scalar backend
+//! everywhere else. Every kernel is written once on that layer, and every backend gives the
+//! same bits; the feature `portable` forces the scalar backend on x86_64 too, and CI runs the
+//! whole test suite that way as well.
 //!
 //! - [`Mask2`], [`Mask3`], [`Mask4`]: typed, `const`-constructible views over baked bytes, read
 //!   toroidally with any integer coordinates; [`Mask3::get_k`] gives the k-th independent value

@@ -164,7 +164,7 @@ impl I4 {
     /// 1.0 in each lane of the mask `self` that is all ones, 0.0 where it is 0.
     #[inline(always)]
     pub(crate) fn ones(self) -> F4 {
-        self.and(I4::splat(0x3f80_0000)).from_bits()
+        self.and(I4::splat(0x3f80_0000)).bits_to_f32()
     }
 
     /// Lanes 0, 1 and 2 as `u32`.
@@ -201,7 +201,7 @@ pub(crate) fn exp2_neg(y: F4) -> F4 {
     let c = EXP2_POLY.map(F4::splat);
     let r2 = r * r;
     let p = (c[0] + c[1] * r) + r2 * ((c[2] + c[3] * r) + r2 * (c[4] + c[5] * r));
-    p * (k.trunc() + I4::splat(127)).shl::<23>().from_bits()
+    p * (k.trunc() + I4::splat(127)).shl::<23>().bits_to_f32()
 }
 
 #[cfg(all(test, target_arch = "x86_64", not(feature = "portable")))]
@@ -342,7 +342,7 @@ mod tests {
             assert_eq!(si.mod_pow2(s).xyzw(), pi.mod_pow2(s).xyzw());
             assert_eq!(si.shl::<23>().xyzw(), pi.shl::<23>().xyzw());
             same("to_f32", a, f(si.to_f32()), pi.to_f32().0);
-            same("from_bits", a, f(si.from_bits()), pi.from_bits().0);
+            same("bits_to_f32", a, f(si.bits_to_f32()), pi.bits_to_f32().0);
             assert_eq!(
                 sse2::I4::bit_masks(s).xyzw(),
                 scalar::I4::bit_masks(s).xyzw()

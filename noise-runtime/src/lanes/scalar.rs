@@ -39,7 +39,7 @@ fn zip<T: Copy, U>(a: [T; 4], b: [T; 4], f: impl Fn(T, T) -> U) -> [U; 4] {
 /// `t as i32` with `cvttss2si`'s answer for NaN and out-of-range `t`: `i32::MIN`.
 #[inline(always)]
 fn cvtt(t: f32) -> i32 {
-    if t >= -2_147_483_648.0 && t < 2_147_483_648.0 {
+    if (-2_147_483_648.0..2_147_483_648.0).contains(&t) {
         t as i32
     } else {
         i32::MIN
@@ -249,7 +249,7 @@ impl I4 {
 
     /// The lanes' bits as `f32` lanes.
     #[inline(always)]
-    pub(crate) fn from_bits(self) -> F4 {
+    pub(crate) fn bits_to_f32(self) -> F4 {
         F4(self.0.map(f32::from_bits))
     }
 

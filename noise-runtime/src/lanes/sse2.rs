@@ -243,7 +243,7 @@ impl I4 {
 
     /// The lanes' bits as `f32` lanes.
     #[inline(always)]
-    pub(crate) fn from_bits(self) -> F4 {
+    pub(crate) fn bits_to_f32(self) -> F4 {
         F4(unsafe { _mm_castsi128_ps(self.0) })
     }
 

@@ -7,13 +7,10 @@
 
 use super::estimators::{roulette_in_range, sanitize_xi};
 use crate::hash::{PRIME, corner, point3};
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
-use crate::lanes::F4;
-use crate::math::{exp2_neg, in_split_range, ln, split, split_in_range, sqrt};
+use crate::lanes::{self, F4, I4};
+#[cfg(test)]
+use crate::math::{exp2_neg, in_split_range, split, split_in_range};
+use crate::math::{ln, split_lanes, sqrt};
 
 /// The paper's roulette probability of keeping the cheap approximation.
 pub const SMOOTH_VORONOI_Q: f32 = 0.875;
@@ -30,14 +27,16 @@ pub fn feature_point3(cell: [i32; 3], seed: u32) -> [f32; 3] {
 }
 
 /// The 3×3×3 neighbourhood of a point: per axis the hash products of the cells at offsets
-/// −1, 0, +1 and the offset in the centre cell.
+/// −1, 0, +1 and the offset in the centre cell. The scalar statement of the 27 distances, the
+/// tests' reference for the lane kernels.
+#[cfg(test)]
 struct Hood {
     p: [[u32; 3]; 3],
     f: [f32; 3],
 }
 
+#[cfg(test)]
 impl Hood {
-    #[inline(always)]
     fn new(p: [f32; 3]) -> Hood {
         // As in Perlin noise: one predictable branch buys the short split for ordinary points.
         if in_split_range(p) {
@@ -47,7 +46,6 @@ impl Hood {
         }
     }
 
-    #[inline(always)]
     fn with(p: [f32; 3], sp: impl Fn(f32) -> (i32, f32)) -> Hood {
         let mut h = Hood {
             p: [[0; 3]; 3],
@@ -67,7 +65,6 @@ impl Hood {
     }
 
     /// The squared distances to the feature points of the 27 cells, x fastest, then y, then z.
-    #[inline(always)]
     fn distances(&self, seed: u32) -> [f32; 27] {
         let o: [[f32; 3]; 3] = core::array::from_fn(|a| {
             let v = self.f[a];
@@ -89,7 +86,6 @@ impl Hood {
 
     /// Squared distance to the feature point of neighbour `(i, j, k)` (indices 0..3 = −1..+1):
     /// the reference the estimator's [`picked_distance`] is tested against.
-    #[cfg(test)]
     fn d2(&self, i: usize, j: usize, k: usize, seed: u32) -> f32 {
         let q = point3(corner(seed, self.p[0][i], self.p[1][j], self.p[2][k]));
         let x = self.f[0] - (i as f32 - 1.0) - q[0];
@@ -100,20 +96,15 @@ impl Hood {
 }
 
 /// The 27 cells in the order of [`Hood::distances`] (z, then y, then x) in seven groups of four,
-/// on lanes, for a point in the split range from its lane split: lane `l` of group `g` is cell
+/// on lanes, for a point split by [`split_lanes`]: lane `l` of group `g` is cell
 /// `4g + l`, and the last group's lane 3, past the 27, has distance `f32::MAX` (a term of 0).
 ///
 /// Four cells' feature points are four 16-byte table reads transposed into x, y and z lanes;
 /// each distance is the scalar one's operations in the same order, so the same bits (the tests
 /// compare the two). Four lanes for 27 cells, not the three cells of a row: seven square roots
 /// and exponentials instead of nine.
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
 #[inline(always)]
-fn groups_lanes(cell: crate::lanes::I4, f: F4, seed: u32) -> [F4; 7] {
+fn groups_lanes(cell: I4, f: F4, seed: u32) -> [F4; 7] {
     use crate::hash::point3_row;
     let prods = |c: u32, a: usize| {
         let b = c.wrapping_mul(PRIME[a]);
@@ -158,11 +149,6 @@ fn groups_lanes(cell: crate::lanes::I4, f: F4, seed: u32) -> [F4; 7] {
 
 /// Per group of [`groups_lanes`], per axis, the lanes' cell offsets negated: `1 − i` for the
 /// cell at index `i` (offset `i − 1`) along the axis.
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
 const OFFSETS: [[[f32; 4]; 3]; 7] = {
     let mut o = [[[0.0f32; 4]; 3]; 7];
     let mut c = 0;
@@ -180,23 +166,12 @@ const OFFSETS: [[[f32; 4]; 3]; 7] = {
 #[inline]
 pub fn worley3_f1(p: [f32; 3], seed: u32) -> f32 {
     // All 27 cells, branch-free: faster than pruning, whose branches are unpredictable.
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    {
-        let v = F4::from3(p);
-        if crate::lanes::in_split_range(v) {
-            let (cell, f) = crate::lanes::split_in_range(v);
-            return sqrt(min_lanes(&groups_lanes(cell, f, seed)));
-        }
-    }
-    worley3_f1_scalar(p, seed)
+    let (cell, f) = split_lanes(F4::from3(p));
+    sqrt(min_lanes(&groups_lanes(cell, f, seed)))
 }
 
-/// [`worley3_f1`] on scalars: on targets without lanes, and for points outside the split range.
-#[inline(always)]
+/// [`worley3_f1`] on scalars, the tests' reference.
+#[cfg(test)]
 fn worley3_f1_scalar(p: [f32; 3], seed: u32) -> f32 {
     sqrt(Hood::new(p).distances(seed).into_iter().fold(f32::MAX, min))
 }
@@ -208,11 +183,6 @@ fn min(a: f32, b: f32) -> f32 {
 }
 
 /// The least lane of seven groups (no lane NaN).
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
 #[inline(always)]
 fn min_lanes(d: &[F4; 7]) -> f32 {
     // A tree, for a short chain.
@@ -236,30 +206,17 @@ const EXP_SCALE: f32 = -32.0 * core::f32::consts::LOG2_E;
 /// exponential, and cost 81 ns against 64.
 #[inline]
 pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    {
-        use crate::lanes;
-        let v = F4::from3(p);
-        if lanes::in_split_range(v) {
-            let (cell, f) = lanes::split_in_range(v);
-            let mut sums = F4::splat(0.0);
-            for g in groups_lanes(cell, f, seed) {
-                let y = (g.sqrt() * F4::splat(EXP_SCALE)).max(F4::splat(-125.0));
-                sums = sums + lanes::exp2_neg(y);
-            }
-            return -ln(sums.sum4()) / 32.0;
-        }
+    let (cell, f) = split_lanes(F4::from3(p));
+    let mut sums = F4::splat(0.0);
+    for g in groups_lanes(cell, f, seed) {
+        let y = (g.sqrt() * F4::splat(EXP_SCALE)).max(F4::splat(-125.0));
+        sums = sums + lanes::exp2_neg(y);
     }
-    smooth_voronoi3_scalar(p, seed)
+    -ln(sums.sum4()) / 32.0
 }
 
-/// [`smooth_voronoi3`] on scalars: on targets without lanes, and for points outside the split
-/// range.
-#[inline(always)]
+/// [`smooth_voronoi3`] on scalars, the tests' reference.
+#[cfg(test)]
 fn smooth_voronoi3_scalar(p: [f32; 3], seed: u32) -> f32 {
     let mut sums = [0.0f32; 4];
     for (c, &d2) in Hood::new(p).distances(seed).iter().enumerate() {
@@ -288,18 +245,7 @@ fn smooth_voronoi3_stochastic_of(x: f32, y: f32, z: f32, seed: u32, q: f32, xi: 
     let p = [x, y, z];
     let t = sanitize_xi(xi) * 8.0;
     // t is in [0, 8): its integer part is the cell's 3 bits, and t minus it is exact, in [0, 1).
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    let bits = crate::lanes::trunc1(t) as u32 & 7;
-    #[cfg(not(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    )))]
-    let bits = (t as u32).min(7);
+    let bits = lanes::trunc1(t) as u32 & 7;
     let rest = t - bits as f32;
     let approx = picked_distance(p, seed, bits).min(0.5);
     roulette_in_range(q, rest, approx, || smooth_voronoi3_of(x, y, z, seed))
@@ -321,41 +267,17 @@ fn picked_distance(p: [f32; 3], seed: u32, bits: u32) -> f32 {
     // For a point in the split range its split on lanes; the offset it gives may be exactly 1
     // where the general split steps to the next cell with offset 0, which picks the same cells
     // at the same offsets (the tests compare the two).
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
-    {
-        use crate::lanes::{self, F4};
-        let v = F4::from3(p);
-        if lanes::in_split_range(v) {
-            let (cell, f) = lanes::split_in_range(v);
-            return picked_distance_lanes(cell, f, seed, bits);
-        }
-    }
-    let split = p.map(split);
-    sqrt(picked_d2_in(
-        split.map(|s| s.0 as u32),
-        split.map(|s| s.1),
-        seed,
-        bits,
-    ))
+    let (cell, f) = split_lanes(F4::from3(p));
+    picked_distance_lanes(cell, f, seed, bits)
 }
 
-/// [`picked_distance`] on lanes (the root of [`picked_d2_in`]): per axis
+/// [`picked_distance`] on lanes : per axis
 /// `i − 1 = −1 + [f ≥ ½] + bit`, the cell's offset and the point's offset from it on lanes;
 /// only the three hash products are scalar (SSE2 has no 32-bit lane multiply). With masks of
 /// all ones for true, `−1 + [f ≥ ½]` is the mask of `f < ½` (0 or −1) and `+ bit` subtracts
 /// the bit's mask.
-#[cfg(all(
-    target_arch = "x86_64",
-    target_feature = "sse2",
-    not(feature = "portable")
-))]
 #[inline(always)]
-fn picked_distance_lanes(cell: crate::lanes::I4, f: F4, seed: u32, bits: u32) -> f32 {
-    use crate::lanes::I4;
+fn picked_distance_lanes(cell: I4, f: F4, seed: u32, bits: u32) -> f32 {
     let im1 = f.less(0.5) - I4::bit_masks(bits);
     let [cx, cy, cz] = (cell + im1).xyz();
     let h =
@@ -366,31 +288,6 @@ fn picked_distance_lanes(cell: crate::lanes::I4, f: F4, seed: u32, bits: u32) ->
     let d = (f - im1.to_f32()) - q;
     // The square root on the lanes: a sum of squares needs no guard for negatives or NaN.
     (d * d).sum3_x().sqrt().x()
-}
-
-/// The squared distance of [`picked_distance`] from the cell of `p` and its offset `f` in it.
-#[inline(always)]
-fn picked_d2_in(cell: [u32; 3], f: [f32; 3], seed: u32, bits: u32) -> f32 {
-    let mut h = seed;
-    let mut d2 = 0.0;
-    let mut d = [0.0f32; 3];
-    for a in 0..3 {
-        // Index 0, 1 or 2 of the neighbourhood (offset −1, 0, +1): the nearer pair's lower one
-        // (by `f < 0.5`, NaN counting as the upper half), plus the axis' bit.
-        let upper_half = if f[a] < 0.5 { 0 } else { 1 };
-        let i = upper_half + ((bits >> a) & 1);
-        h ^= cell[a]
-            .wrapping_add(i)
-            .wrapping_sub(1)
-            .wrapping_mul(PRIME[a]);
-        d[a] = f[a] - (i as f32 - 1.0);
-    }
-    let q = point3(h.wrapping_mul(crate::hash::CORNER_MUL));
-    for a in 0..3 {
-        let x = d[a] - q[a];
-        d2 += x * x;
-    }
-    d2
 }
 
 #[cfg(test)]
@@ -414,6 +311,8 @@ mod tests {
             -4_194_303.5,
             1e7,
             -3e38,
+            f32::INFINITY,
+            f32::NAN,
         ];
         for k in -3..=3 {
             let k = k as f32;
@@ -517,22 +416,12 @@ mod tests {
         });
     }
 
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse2",
-        not(feature = "portable")
-    ))]
     #[test]
     fn lanes_are_the_scalar_forms_bit_for_bit() {
-        use crate::lanes::{self, F4};
         let mut seen = 0;
         points(|p| {
-            let v = F4::from3(p);
-            if !lanes::in_split_range(v) {
-                return;
-            }
             seen += 1;
-            let (cell, f) = lanes::split_in_range(v);
+            let (cell, f) = split_lanes(F4::from3(p));
             let groups = groups_lanes(cell, f, 9);
             let want = Hood::new(p).distances(9);
             for (c, want) in want.iter().enumerate() {
@@ -557,12 +446,11 @@ mod tests {
                 );
             }
         });
-        assert!(seen > 20_000, "the lane path ran {seen} times");
+        assert!(seen > 20_000, "compared {seen} points");
     }
 
     #[test]
     fn lane_square_root_and_exponential_are_the_scalar_ones_bit_for_bit() {
-        use crate::lanes::{self, F4};
         let mut next = uniforms(0xbb67_ae85_84ca_a73b);
         let mut sq = vec![0.0f32, 1e-45, 1e-38, 0.25, 1.0, 2.999_999_8, 12.0, 3e38];
         sq.extend((0..4000).map(|_| next() * 12.0));

@@ -83,7 +83,7 @@ fn gradient_dot<L: Lanes8>(cpu: L, h: &U8, dx: &F8, dy: &F8, dz: &F8) -> F8 {
 }
 
 /// [`perlin3`](super::super::perlin3) of eight points in the split range: the lane form's
-/// (`perlin::sse::perlin3_in_range`) products and sums, lane by lane.
+/// (`perlin::lanes::perlin3_cell`) products and sums, lane by lane.
 #[inline(always)]
 fn perlin3_lanes<L: Lanes8>(cpu: L, p: &[F8; 3], seed: u32) -> F8 {
     let (cell, f) = split(p);
@@ -147,7 +147,7 @@ fn edge<L: Lanes8>(
 
 /// [`perlin3_stochastic`](super::super::perlin3_stochastic) of eight points in the split
 /// range, each with its own seed and ξ: the fixed-point corner choice of
-/// `estimators::Narrowing`, lane by lane (`perlin::sse::perlin3_stochastic_cell`). `UNIT`:
+/// `estimators::Narrowing`, lane by lane (`perlin::lanes::perlin3_stochastic_cell`). `UNIT`:
 /// every ξ is known to lie in `[0, 1)` (a remapped one), where sanitising changes nothing
 /// and is left out (`Narrowing::new_unit`).
 #[inline(always)]
