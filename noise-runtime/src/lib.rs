@@ -63,6 +63,7 @@ extern crate std;
 
 pub mod cnj;
 pub mod coord;
+mod gradients;
 pub mod hash;
 mod lanes;
 pub mod ldg;

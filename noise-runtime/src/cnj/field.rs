@@ -9,7 +9,8 @@
 //! `f64`, so the field is exact for any lattice site an `i32` can name; the arithmetic after the
 //! split is `f32`.
 
-use crate::hash::{CORNER_MUL, PRIME};
+use crate::gradients;
+use crate::hash::PRIME;
 use crate::math::{dfade, fade};
 use crate::stochastic::Perlin;
 
@@ -29,18 +30,13 @@ pub(crate) fn split64(x: f64) -> (i32, f32) {
     )
 }
 
+/// The gradient of lattice point `(ix, iy)`: uniform in `[−1, 1]²`
+/// ([`gradients::uniform2`]) from its corner hash.
 #[inline(always)]
 fn grad2(ix: i32, iy: i32, seed: u32) -> [f32; 2] {
-    // Two multiplies: the lattice-corner hash, then one xorshift–multiply round so the low
-    // half (the y component) is as well mixed as the high half.
-    let h = (seed ^ (ix as u32).wrapping_mul(PRIME[0]) ^ (iy as u32).wrapping_mul(PRIME[1]))
-        .wrapping_mul(CORNER_MUL);
-    let h = (h ^ (h >> 15)).wrapping_mul(0x2c1b_3c6d);
-    const S: f32 = 1.0 / 32768.0;
-    [
-        (h >> 16) as i32 as f32 * S - 1.0,
-        (h & 0xffff) as i32 as f32 * S - 1.0,
-    ]
+    gradients::uniform2(
+        seed ^ (ix as u32).wrapping_mul(PRIME[0]) ^ (iy as u32).wrapping_mul(PRIME[1]),
+    )
 }
 
 /// 2D gradient noise and its gradient `(n, ∂n/∂x, ∂n/∂y)` at `p` (noise units).

@@ -5,6 +5,7 @@
 //! is evaluated.
 
 use super::estimators::{Narrowing, fresh_corner2, unit_corner};
+use crate::gradients;
 use crate::hash::{CORNER_MUL, PRIME, corner};
 use crate::math::{dfade, fade, split};
 
@@ -15,98 +16,17 @@ fn lerp(t: f32, a: f32, b: f32) -> f32 {
     a + t * (b - a)
 }
 
-/// The 8 gradients of 2D noise (axes and diagonals).
-const GRAD2: [[f32; 2]; 8] = [
-    [1.0, 1.0],
-    [-1.0, 1.0],
-    [1.0, -1.0],
-    [-1.0, -1.0],
-    [1.0, 0.0],
-    [-1.0, 0.0],
-    [0.0, 1.0],
-    [0.0, -1.0],
-];
-
-/// The 12 cube-edge gradients of improved noise, padded to 16 as in Perlin 2002. Rows of four
-/// (the fourth 0), so that a gradient is one aligned 16-byte read.
-#[repr(align(16))]
-struct Grad3([[f32; 4]; 16]);
-static GRAD3: Grad3 = Grad3(GRAD3_ROWS);
-const GRAD3_ROWS: [[f32; 4]; 16] = [
-    [1.0, 1.0, 0.0, 0.0],
-    [-1.0, 1.0, 0.0, 0.0],
-    [1.0, -1.0, 0.0, 0.0],
-    [-1.0, -1.0, 0.0, 0.0],
-    [1.0, 0.0, 1.0, 0.0],
-    [-1.0, 0.0, 1.0, 0.0],
-    [1.0, 0.0, -1.0, 0.0],
-    [-1.0, 0.0, -1.0, 0.0],
-    [0.0, 1.0, 1.0, 0.0],
-    [0.0, -1.0, 1.0, 0.0],
-    [0.0, 1.0, -1.0, 0.0],
-    [0.0, -1.0, -1.0, 0.0],
-    [1.0, 1.0, 0.0, 0.0],
-    [1.0, -1.0, 0.0, 0.0],
-    [-1.0, 1.0, 0.0, 0.0],
-    [0.0, -1.0, -1.0, 0.0],
-];
-
-/// [`GRAD3`] by columns: `GRAD3_COLUMNS[a][j >> 3][j & 7]` is axis `a` of gradient `j`, for
-/// the batch forms, which read one axis of eight gradients at a time.
-pub(super) const GRAD3_COLUMNS: [[[f32; 8]; 2]; 3] = {
-    let mut c = [[[0.0f32; 8]; 2]; 3];
-    let mut j = 0;
-    while j < 16 {
-        let mut a = 0;
-        while a < 3 {
-            c[a][j >> 3][j & 7] = GRAD3_ROWS[j][a];
-            a += 1;
-        }
-        j += 1;
-    }
-    c
-};
-
-/// The 32 edge gradients of the tesseract: one axis zero, the other three ±1. Aligned rows,
-/// as [`GRAD3`].
-#[repr(align(16))]
-struct Grad4([[f32; 4]; 32]);
-static GRAD4: Grad4 = Grad4({
-    let mut g = [[0.0f32; 4]; 32];
-    let mut i = 0;
-    while i < 32 {
-        let zero = i >> 3;
-        let mut axis = 0;
-        let mut bit = 0;
-        while axis < 4 {
-            if axis != zero {
-                g[i][axis] = if (i >> bit) & 1 == 0 { 1.0 } else { -1.0 };
-                bit += 1;
-            }
-            axis += 1;
-        }
-        i += 1;
-    }
-    g
-});
-
 #[inline(always)]
 fn g2(h: u32) -> [f32; 2] {
-    GRAD2[(h >> 29) as usize]
+    gradients::perlin2(h)
 }
 #[inline(always)]
 fn g3(h: u32) -> [f32; 4] {
-    GRAD3.0[(h >> 28) as usize]
+    *gradients::edge3(h)
 }
 #[inline(always)]
 fn g4(h: u32) -> [f32; 4] {
-    GRAD4.0[(h >> 27) as usize]
-}
-
-/// Gradient `i` (of 32, taken modulo 32) of the tesseract's edge set, for 4D simplex noise.
-#[inline(always)]
-pub(super) fn tesseract_gradient(i: u32) -> [f32; 4] {
-    GRAD4.0[(i & 31) as usize]
+    *gradients::edge4(h)
 }
 
 /// 2D Perlin noise, about `[-1, 1]`.
@@ -346,7 +266,7 @@ mod tests {
     fn index4(c: [i32; 4], seed: u32) -> usize {
         let (lo, _) = split4(c.map(|v| v as f32 + 0.5), split);
         let g = grad4(lo, [0; 4], seed);
-        GRAD4.0.iter().position(|&r| r == g).unwrap()
+        gradients::EDGES4.0.iter().position(|&r| r == g).unwrap()
     }
 
     /// The gradient row the lower corner of the 3D cell `c` gets in [`perlin3`] (the top four

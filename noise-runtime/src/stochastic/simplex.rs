@@ -14,6 +14,7 @@
 
 #[cfg(test)]
 use super::estimators::sanitize_xi;
+use crate::gradients;
 use crate::hash::{CORNER_MUL, PRIME, hash3};
 #[cfg(test)]
 use crate::math::split;
@@ -102,28 +103,6 @@ fn corners_of(
     )
 }
 
-/// The 12 edge gradients of improved noise picked by 4 hash bits, padded to 16 as Perlin's
-/// reference does: `u = x` for `h < 8` else `y`; `v = y` for `h < 4`, `x` for `h` 12 and 14,
-/// else `z`; the gradient is `±u ± v` by bits 0 and 1.
-static GRAD: [[f32; 3]; 16] = {
-    let mut g = [[0.0f32; 3]; 16];
-    let mut h = 0;
-    while h < 16 {
-        let u = if h < 8 { 0 } else { 1 };
-        let v = if h < 4 {
-            1
-        } else if h == 12 || h == 14 {
-            0
-        } else {
-            2
-        };
-        g[h][u] = if h & 1 == 0 { 1.0 } else { -1.0 };
-        g[h][v] = if h & 2 == 0 { 1.0 } else { -1.0 };
-        h += 1;
-    }
-    g
-};
-
 /// 3D simplex noise, in `[-1, 1]`.
 #[inline(always)]
 pub fn simplex3(p: [f32; 3], seed: u32) -> f32 {
@@ -167,24 +146,6 @@ const SKEW4: Skew = Skew {
     unskew: 0.138_196_6,
 };
 
-/// 2D gradients: 16 unit vectors at the angles `(k + ½)·22.5°`, so that no direction of the
-/// plane is favoured (the axes-and-diagonals set of [`perlin2`](super::perlin2) mixes lengths
-/// 1 and √2).
-static GRAD2: [[f32; 2]; 16] = {
-    const A: [f32; 4] = [0.980_785_3, 0.831_469_6, 0.555_570_24, 0.195_090_32];
-    let mut g = [[0.0f32; 2]; 16];
-    let mut k = 0;
-    while k < 4 {
-        let (c, s) = (A[k], A[3 - k]);
-        g[k] = [c, s];
-        g[k + 4] = [-s, c];
-        g[k + 8] = [-c, -s];
-        g[k + 12] = [s, -c];
-        k += 1;
-    }
-    g
-};
-
 /// Scale of 2D simplex noise, `[-1, 1]`: see [`SCALE`].
 const SCALE2: f32 = 99.0;
 /// Scale of 4D simplex noise, `[-1, 1]`: see [`SCALE`].
@@ -206,17 +167,18 @@ fn lattice_hash<const N: usize>(c: [i32; N], seed: u32) -> u32 {
 
 #[inline(always)]
 fn grad2(c: [i32; 2], seed: u32) -> [f32; 2] {
-    GRAD2[(lattice_hash(c, seed) >> 28) as usize]
+    gradients::UNIT2[(lattice_hash(c, seed) >> 28) as usize]
 }
 
 #[inline(always)]
 fn grad3(c: [i32; 3], seed: u32) -> [f32; 3] {
-    GRAD[(hash3(c[0], c[1], c[2], seed) >> 28) as usize]
+    let g = gradients::edge3_simplex(hash3(c[0], c[1], c[2], seed));
+    [g[0], g[1], g[2]]
 }
 
 #[inline(always)]
 fn grad4(c: [i32; 4], seed: u32) -> [f32; 4] {
-    super::perlin::tesseract_gradient(lattice_hash(c, seed) >> 27)
+    *gradients::edge4(lattice_hash(c, seed))
 }
 
 /// 2D simplex noise, in `[-1, 1]`: three corners instead of [`perlin2`](super::perlin2)'s

@@ -14,7 +14,7 @@
 
 use super::super::estimators::{fixed, sanitize_xi};
 use super::super::fractal::{Fractal, octave_seed};
-use super::super::perlin::GRAD3_COLUMNS;
+use crate::gradients::EDGES3_COLUMNS;
 use crate::hash::{CORNER_MUL, PRIME};
 use crate::lanes::{F8, Lanes8, U8};
 use crate::math::{fade, split_in_range};
@@ -72,9 +72,9 @@ fn gradient_dot<L: Lanes8>(cpu: L, h: &U8, dx: &F8, dy: &F8, dz: &F8) -> F8 {
     for i in 0..W {
         j[i] = h[i].wrapping_mul(CORNER_MUL) >> 28;
     }
-    let gx = cpu.lookup16(&GRAD3_COLUMNS[0], j);
-    let gy = cpu.lookup16(&GRAD3_COLUMNS[1], j);
-    let gz = cpu.lookup16(&GRAD3_COLUMNS[2], j);
+    let gx = cpu.lookup16(&EDGES3_COLUMNS[0], j);
+    let gy = cpu.lookup16(&EDGES3_COLUMNS[1], j);
+    let gz = cpu.lookup16(&EDGES3_COLUMNS[2], j);
     let mut v = [0.0f32; W];
     for i in 0..W {
         v[i] = (gx[i] * dx[i] + gy[i] * dy[i]) + gz[i] * dz[i];

@@ -7,7 +7,8 @@
 //! kernel with the textbook scalar form (nested lerps over the corners, Perlin 2002;
 //! Algorithm 1 of Fajardo & Pharr for the estimators) bit for bit.
 
-use super::{GRAD3, GRAD4, Narrowing, PRIME, unit_corner};
+use super::{Narrowing, PRIME, unit_corner};
+use crate::gradients::{edge3, edge4};
 use crate::hash::CORNER_MUL;
 use crate::lanes::{self, F4, I4};
 use crate::math::split_lanes as cells;
@@ -65,7 +66,7 @@ fn pick_corner<const D: usize>(
 /// The gradient row of corner hash `h` (before its finishing multiply).
 #[inline(always)]
 fn grad(h: u32) -> F4 {
-    F4::new(&GRAD3.0[(h.wrapping_mul(CORNER_MUL) >> 28) as usize])
+    F4::new(edge3(h.wrapping_mul(CORNER_MUL)))
 }
 
 /// [`perlin3`](super::perlin3) of a point already in lanes: for the deterministic fBm, which
@@ -133,7 +134,7 @@ pub(crate) fn perlin3_stochastic_cell(cell: I4, f: F4, seed: u32, n: Narrowing) 
 /// The gradient row of 4D corner hash `h` (before its finishing multiply).
 #[inline(always)]
 fn grad4(h: u32) -> F4 {
-    F4::new(&GRAD4.0[(h.wrapping_mul(CORNER_MUL) >> 27) as usize])
+    F4::new(edge4(h.wrapping_mul(CORNER_MUL)))
 }
 
 /// The 4D kernel: [`perlin4`](super::perlin4) at offset `f` in cell `cell`.

@@ -4,22 +4,12 @@
 //! (by transposes). Bit for bit the general lattice's forms ([`lattice`](super::lattice)),
 //! which the tests compare them with.
 
-use super::{G3, GRAD, SCALE, SCALE4, SKEW4, rank_order};
+use super::{G3, SCALE, SCALE4, SKEW4, rank_order};
+use crate::gradients::{edge3_simplex as edge3, edge4};
 use crate::hash::{CORNER_MUL, PRIME, hash3};
 use crate::lanes::{F4, I4};
 use crate::math::split_lanes;
 use crate::stochastic::estimators::{sanitize_xi, unit_corner};
-
-/// [`GRAD`] padded to four lanes, so that a row is one load.
-static GRAD_ROWS: [[f32; 4]; 16] = {
-    let mut r = [[0.0f32; 4]; 16];
-    let mut h = 0;
-    while h < 16 {
-        r[h] = [GRAD[h][0], GRAD[h][1], GRAD[h][2], 0.0];
-        h += 1;
-    }
-    r
-};
 
 /// The simplex corners of `p` (lattice points and offsets, as `corners` gives them).
 #[inline(always)]
@@ -55,7 +45,7 @@ fn weights(d: [F4; 4]) -> F4 {
 /// The gradient of lattice point `c` (as `grad_dot` picks it).
 #[inline(always)]
 fn grad(c: [i32; 3], seed: u32) -> F4 {
-    F4::new(&GRAD_ROWS[(hash3(c[0], c[1], c[2], seed) >> 28) as usize])
+    F4::new(edge3(hash3(c[0], c[1], c[2], seed)))
 }
 
 /// [`simplex3`](super::simplex3).
@@ -140,8 +130,7 @@ impl Corners4 {
     /// The gradient row of corner `k`.
     #[inline(always)]
     fn grad(&self, k: usize) -> F4 {
-        let h = self.h[k].wrapping_mul(CORNER_MUL);
-        F4::new(&super::super::perlin::tesseract_gradient(h >> 27))
+        F4::new(edge4(self.h[k].wrapping_mul(CORNER_MUL)))
     }
 }
 
