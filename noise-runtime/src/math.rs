@@ -207,10 +207,10 @@ pub fn cos_turns(u: f32) -> f32 {
 }
 
 /// `√x` in f32, correctly rounded (the IEEE square root), for the hot paths (Worley distances,
-/// kernels); `x ≤ 0` or NaN gives 0, `+∞` gives `+∞`. On x86_64 the processor's `sqrtss`,
-/// one instruction where a Newton-refined guess is a chain of thirteen (it made smooth Voronoi
-/// 30 % faster); elsewhere [`sqrt_soft`]. Both round correctly, so every target gets the same
-/// bits.
+/// kernels); `x ≤ 0` or NaN gives 0, `+∞` gives `+∞`. The lane layer's root: on x86_64 the
+/// processor's `sqrtss`, one instruction where a Newton-refined guess is a chain of thirteen
+/// (it made smooth Voronoi 30 % faster); elsewhere [`sqrt_soft`]. Both round correctly, so
+/// every target gets the same bits.
 #[inline(always)]
 pub fn sqrt(x: f32) -> f32 {
     crate::lanes::sqrt1(x)
@@ -297,23 +297,34 @@ fn nearest(x: f32) -> (i32, f32) {
     )
 }
 
-/// The cells and offsets of the four lanes of `v`, as [`split_in_range`] gives them when every
-/// lane is in its range (the common case, split on lanes) and as [`split`] gives them
-/// otherwise (huge, infinite or NaN coordinates; one predictable branch). The split of every
-/// lane kernel.
+/// `kernel(cell, offset)` for the four lanes of `v`, split as [`split_in_range`] splits them
+/// when every lane is in its range (the common case, on lanes) and as [`split`] does
+/// otherwise (huge, infinite or NaN coordinates; one predictable branch). How every lane
+/// kernel meets its point. A continuation rather than a returned split: the kernel is
+/// compiled once inline on the hot path and once in the cold one, so the two splits never
+/// merge into one value, which LLVM passed through the stack (Worley F1 took 41 ns instead
+/// of 24 that way).
 #[inline(always)]
-pub(crate) fn split_lanes(v: F4) -> (I4, F4) {
+pub(crate) fn on_cells<R>(v: F4, kernel: impl FnOnce(I4, F4) -> R) -> R {
     if lanes::in_split_range(v) {
-        lanes::split_in_range(v)
+        let (cell, f) = lanes::split_in_range(v);
+        kernel(cell, f)
     } else {
-        split_lanes_any(v)
+        on_cells_any(v, kernel)
     }
 }
 
-/// [`split`] per lane, for points outside the split range.
+/// [`on_cells`] for points outside the split range.
 #[cold]
 #[inline(never)]
-fn split_lanes_any(v: F4) -> (I4, F4) {
+fn on_cells_any<R>(v: F4, kernel: impl FnOnce(I4, F4) -> R) -> R {
+    let (cell, f) = split_lanes(v);
+    kernel(cell, f)
+}
+
+/// [`split`] per lane.
+#[inline(always)]
+pub(crate) fn split_lanes(v: F4) -> (I4, F4) {
     let s = [v.x(), v.y(), v.z(), v.w()].map(split);
     (
         I4::new(s.map(|(c, _)| c as u32)),

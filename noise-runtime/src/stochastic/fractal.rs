@@ -348,7 +348,7 @@ mod tests {
     use super::super::perlin::perlin3;
     use super::*;
 
-    /// The fBm estimator's shortcut (one split at the finest octave, on x86_64) returns what
+    /// The fBm estimator's shortcut (one split at the finest octave) returns what
     /// the generic estimator returns, bit for bit: every octave count, both signs of gain,
     /// points at and next to lattice planes of every octave, at the edge of the shortcut's
     /// range, and random ones, with hard and random ξ.

@@ -89,6 +89,25 @@ pub(crate) fn uniforms(mut s: u64) -> impl FnMut() -> f32 {
     }
 }
 
+/// Coordinates that are hard for the lattice splits, for the tests: ±0, the smallest
+/// subnormals, both sides of the edge of the fast split's range (2^22), far beyond it, the
+/// infinities and NaN. Each test adds the integers and halves near the origin it needs.
+#[cfg(test)]
+pub(crate) const HARD_COORDINATES: [f32; 12] = [
+    0.0,
+    -0.0,
+    1e-45,
+    -1e-45,
+    4_194_303.5,
+    -4_194_303.5,
+    4_194_304.0,
+    -1e7,
+    3e38,
+    f32::INFINITY,
+    f32::NEG_INFINITY,
+    f32::NAN,
+];
+
 mod noises;
 
 pub use crate::hash::{hash2, hash3, hash4, pcg};

@@ -33,8 +33,7 @@ const G3: f32 = 1.0 / 6.0;
 const SCALE: f32 = 76.0;
 
 /// The simplex corners of `p`: lattice cell and offsets of each corner, as the 3D form once
-/// found them; now the tests' reference for the general lattice ([`lattice`]), which the
-/// scalar forms use.
+/// found them; now the tests' reference for the general lattice ([`lattice`]).
 #[cfg(test)]
 fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [[f32; 3]; 4]) {
     corners_by(p, rank_order)
@@ -234,7 +233,7 @@ pub fn simplex4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 }
 
 /// One-sample estimator of [`simplex4`]: one gradient of five, chosen with probability ∝ its
-/// weight. On x86_64 it takes about as long as [`simplex4`] (`noisebake report`: 1.0×): the
+/// weight. On a CPU it takes about as long as [`simplex4`] (`noisebake report`: 1.0×): the
 /// four gradients it skips are cheap next to the weights it must compute. For fractal sums,
 /// choose the octave stochastically ([`fractal_stochastic`](super::fractal_stochastic)).
 #[inline(always)]

@@ -9,8 +9,10 @@ use super::estimators::{roulette_in_range, sanitize_xi};
 use crate::hash::{PRIME, corner, point3};
 use crate::lanes::{self, F4, I4};
 #[cfg(test)]
+use crate::math::split_lanes;
+#[cfg(test)]
 use crate::math::{exp2_neg, in_split_range, split, split_in_range};
-use crate::math::{ln, split_lanes, sqrt};
+use crate::math::{ln, on_cells, sqrt};
 
 /// The paper's roulette probability of keeping the cheap approximation.
 pub const SMOOTH_VORONOI_Q: f32 = 0.875;
@@ -166,8 +168,9 @@ const OFFSETS: [[[f32; 4]; 3]; 7] = {
 #[inline]
 pub fn worley3_f1(p: [f32; 3], seed: u32) -> f32 {
     // All 27 cells, branch-free: faster than pruning, whose branches are unpredictable.
-    let (cell, f) = split_lanes(F4::from3(p));
-    sqrt(min_lanes(&groups_lanes(cell, f, seed)))
+    on_cells(F4::from3(p), |cell, f| {
+        sqrt(min_lanes(&groups_lanes(cell, f, seed)))
+    })
 }
 
 /// [`worley3_f1`] on scalars, the tests' reference.
@@ -206,13 +209,14 @@ const EXP_SCALE: f32 = -32.0 * core::f32::consts::LOG2_E;
 /// exponential, and cost 81 ns against 64.
 #[inline]
 pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
-    let (cell, f) = split_lanes(F4::from3(p));
-    let mut sums = F4::splat(0.0);
-    for g in groups_lanes(cell, f, seed) {
-        let y = (g.sqrt() * F4::splat(EXP_SCALE)).max(F4::splat(-125.0));
-        sums = sums + lanes::exp2_neg(y);
-    }
-    -ln(sums.sum4()) / 32.0
+    on_cells(F4::from3(p), |cell, f| {
+        let mut sums = F4::splat(0.0);
+        for g in groups_lanes(cell, f, seed) {
+            let y = (g.sqrt() * F4::splat(EXP_SCALE)).max(F4::splat(-125.0));
+            sums = sums + lanes::exp2_neg(y);
+        }
+        -ln(sums.sum4()) / 32.0
+    })
 }
 
 /// [`smooth_voronoi3`] on scalars, the tests' reference.
@@ -267,8 +271,9 @@ fn picked_distance(p: [f32; 3], seed: u32, bits: u32) -> f32 {
     // For a point in the split range its split on lanes; the offset it gives may be exactly 1
     // where the general split steps to the next cell with offset 0, which picks the same cells
     // at the same offsets (the tests compare the two).
-    let (cell, f) = split_lanes(F4::from3(p));
-    picked_distance_lanes(cell, f, seed, bits)
+    on_cells(F4::from3(p), |cell, f| {
+        picked_distance_lanes(cell, f, seed, bits)
+    })
 }
 
 /// [`picked_distance`] on lanes : per axis
@@ -302,18 +307,7 @@ mod tests {
     /// signs (where the lane split's offset may be 1), halves (where the nearer pair of cells
     /// changes), ±0, the edge of the split range and far beyond it.
     fn hard() -> Vec<f32> {
-        let mut v = vec![
-            0.0,
-            -0.0,
-            1e-45,
-            -1e-45,
-            4_194_303.5,
-            -4_194_303.5,
-            1e7,
-            -3e38,
-            f32::INFINITY,
-            f32::NAN,
-        ];
+        let mut v = crate::stochastic::HARD_COORDINATES.to_vec();
         for k in -3..=3 {
             let k = k as f32;
             let up = f32::from_bits(k.abs().to_bits() + 1);

@@ -11,34 +11,34 @@ use super::{Narrowing, PRIME, unit_corner};
 use crate::gradients::{edge3, edge4};
 use crate::hash::CORNER_MUL;
 use crate::lanes::{self, F4, I4};
-use crate::math::split_lanes as cells;
+use crate::math::on_cells;
 
 /// [`perlin3`](super::perlin3).
 #[inline(always)]
 pub(super) fn perlin3(p: [f32; 3], seed: u32) -> f32 {
-    let (cell, f) = cells(F4::from3(p));
-    perlin3_cell(cell, f, seed)
+    on_cells(F4::from3(p), |cell, f| perlin3_cell(cell, f, seed))
 }
 
 /// [`perlin3_stochastic`](super::perlin3_stochastic).
 #[inline(always)]
 pub(super) fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    let (cell, f) = cells(F4::from3(p));
-    perlin3_stochastic_cell(cell, f, seed, Narrowing::new(xi))
+    on_cells(F4::from3(p), |cell, f| {
+        perlin3_stochastic_cell(cell, f, seed, Narrowing::new(xi))
+    })
 }
 
 /// [`perlin4`](super::perlin4).
 #[inline(always)]
 pub(super) fn perlin4(p: [f32; 4], seed: u32) -> f32 {
-    let (cell, f) = cells(F4::from4(p));
-    perlin4_cell(cell, f, seed)
+    on_cells(F4::from4(p), |cell, f| perlin4_cell(cell, f, seed))
 }
 
 /// [`perlin4_stochastic`](super::perlin4_stochastic).
 #[inline(always)]
 pub(super) fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    let (cell, f) = cells(F4::from4(p));
-    perlin4_stochastic_cell(cell, f, seed, xi)
+    on_cells(F4::from4(p), |cell, f| {
+        perlin4_stochastic_cell(cell, f, seed, xi)
+    })
 }
 
 /// The corner of a `D`-dimensional cell that the narrowing `n` picks for the fixed-point
@@ -74,8 +74,7 @@ fn grad(h: u32) -> F4 {
 /// is (as `0 · freq` is).
 #[inline(always)]
 pub(crate) fn perlin3_lanes(v: F4, seed: u32) -> f32 {
-    let (cell, f) = cells(v);
-    perlin3_cell(cell, f, seed)
+    on_cells(v, |cell, f| perlin3_cell(cell, f, seed))
 }
 
 /// The 3D kernel: [`perlin3`](super::perlin3) at offset `f` (lanes 0–2) in cell `cell`.
@@ -292,20 +291,7 @@ mod tests {
     /// infinite and NaN coordinates), every triple of them, and at random points.
     fn points(mut check: impl FnMut(usize, [f32; 3])) {
         let mut hard = [0.0f32; 40];
-        hard[..12].copy_from_slice(&[
-            0.0,
-            -0.0,
-            1e-45,
-            -1e-45,
-            4_194_303.5,
-            -4_194_303.5,
-            4_194_304.0,
-            -1e7,
-            3e38,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::NAN,
-        ]);
+        hard[..12].copy_from_slice(&crate::stochastic::HARD_COORDINATES);
         for k in 0..7 {
             let v = k as f32 - 3.0;
             let up = f32::from_bits(v.abs().to_bits() + 1);

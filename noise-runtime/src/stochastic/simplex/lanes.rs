@@ -8,15 +8,29 @@ use super::{G3, SCALE, SCALE4, SKEW4, rank_order};
 use crate::gradients::{edge3_simplex as edge3, edge4};
 use crate::hash::{CORNER_MUL, PRIME, hash3};
 use crate::lanes::{F4, I4};
-use crate::math::split_lanes;
+use crate::math::on_cells;
 use crate::stochastic::estimators::{sanitize_xi, unit_corner};
 
-/// The simplex corners of `p` (lattice points and offsets, as `corners` gives them).
+/// `kernel` of the simplex corners of `p` (lattice points and offsets, as `corners` gives
+/// them).
 #[inline(always)]
-fn corners(p: [f32; 3]) -> ([[i32; 3]; 4], [F4; 4]) {
-    let s = (p[0] + p[1] + p[2]) * (1.0 / 3.0);
-    let q = F4::from3([p[0] + s, p[1] + s, p[2] + s]);
-    let (cell, f) = split_lanes(q);
+fn on_corners<R>(p: [f32; 3], kernel: impl FnOnce([[i32; 3]; 4], [F4; 4]) -> R) -> R {
+    // The point read once into lanes (see `F4::from3`), and the skew from them: `(x + y) + z`
+    // as the lattice form sums it. Lane 3 becomes `s`; it is never used, and cannot change the
+    // range test: when `|s| ≥ 2^22`, the skewed coordinates sum to `6s`, so one of them is
+    // out of range too.
+    let v = F4::from3(p);
+    let s = v.sum3() * (1.0 / 3.0);
+    let q = v + F4::splat(s);
+    on_cells(q, |cell, f| {
+        let (c, d) = corners_of(cell, f);
+        kernel(c, d)
+    })
+}
+
+/// The corners of a skewed point split into `cell` and `f`.
+#[inline(always)]
+fn corners_of(cell: I4, f: F4) -> ([[i32; 3]; 4], [F4; 4]) {
     let d0 = f - F4::splat(f.sum3() * G3);
     let (o1, o2) = rank_order([d0.x(), d0.y(), d0.z()]);
     let bits = |o: [i32; 3]| (o[0] | o[1] << 1 | o[2] << 2) as u32;
@@ -51,7 +65,12 @@ fn grad(c: [i32; 3], seed: u32) -> F4 {
 /// [`simplex3`](super::simplex3).
 #[inline(always)]
 pub(super) fn simplex3(p: [f32; 3], seed: u32) -> f32 {
-    let (c, d) = corners(p);
+    on_corners(p, |c, d| simplex3_of(c, d, seed))
+}
+
+/// [`simplex3`] from its corners.
+#[inline(always)]
+fn simplex3_of(c: [[i32; 3]; 4], d: [F4; 4], seed: u32) -> f32 {
     let dots = F4::sums3([0, 1, 2, 3].map(|k| grad(c[k], seed) * d[k]));
     let v = weights(d) * dots;
     // The scalar form's running sum, from 0.0.
@@ -61,7 +80,12 @@ pub(super) fn simplex3(p: [f32; 3], seed: u32) -> f32 {
 /// [`simplex3_stochastic`](super::simplex3_stochastic).
 #[inline(always)]
 pub(super) fn simplex3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    let (c, d) = corners(p);
+    on_corners(p, |c, d| simplex3_stochastic_of(c, d, seed, xi))
+}
+
+/// [`simplex3_stochastic`] from its corners.
+#[inline(always)]
+fn simplex3_stochastic_of(c: [[i32; 3]; 4], d: [F4; 4], seed: u32, xi: f32) -> f32 {
     let w = weights(d);
     let ends = [w.x(), w.x() + w.y(), (w.x() + w.y()) + w.z()];
     let total = ends[2] + w.w();
@@ -81,12 +105,17 @@ struct Corners4 {
 }
 
 impl Corners4 {
-    /// The corners of `p`, as `lattice::Corners::<4, 5>` finds them.
+    /// `kernel` of the corners of `p`, as `lattice::Corners::<4, 5>` finds them.
     #[inline(always)]
-    fn new(p: [f32; 4], seed: u32) -> Self {
+    fn on<R>(p: [f32; 4], seed: u32, kernel: impl FnOnce(&Self) -> R) -> R {
         let v = F4::from4(p);
         let q = v + F4::splat(v.sum4() * SKEW4.skew);
-        let (cell, f) = split_lanes(q);
+        on_cells(q, |cell, f| kernel(&Corners4::of(cell, f, seed)))
+    }
+
+    /// The corners of a skewed point split into `cell` and `f`.
+    #[inline(always)]
+    fn of(cell: I4, f: F4, seed: u32) -> Self {
         let g = SKEW4.unskew;
         let d0 = f - F4::splat(f.sum4() * g);
         let e = [d0.x(), d0.y(), d0.z(), d0.w()];
@@ -137,7 +166,12 @@ impl Corners4 {
 /// [`simplex4`](super::simplex4).
 #[inline(always)]
 pub(super) fn simplex4(p: [f32; 4], seed: u32) -> f32 {
-    let c = Corners4::new(p, seed);
+    Corners4::on(p, seed, simplex4_of)
+}
+
+/// [`simplex4`] from its corners.
+#[inline(always)]
+fn simplex4_of(c: &Corners4) -> f32 {
     let (w, w4) = c.weights();
     let dot = |k: usize| c.grad(k) * c.d[k];
     let v = w * F4::sums4([dot(0), dot(1), dot(2), dot(3)]);
@@ -149,7 +183,12 @@ pub(super) fn simplex4(p: [f32; 4], seed: u32) -> f32 {
 /// [`simplex4_stochastic`](super::simplex4_stochastic).
 #[inline(always)]
 pub(super) fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    let c = Corners4::new(p, seed);
+    Corners4::on(p, seed, |c| simplex4_stochastic_of(c, xi))
+}
+
+/// [`simplex4_stochastic`] from its corners.
+#[inline(always)]
+fn simplex4_stochastic_of(c: &Corners4, xi: f32) -> f32 {
     let (w, w4) = c.weights();
     let e0 = 0.0 + w.x();
     let e1 = e0 + w.y();

@@ -1,8 +1,9 @@
 //! The simplex lattice in any dimension `N` (Perlin 2001; the skew constants as in Gustavson
 //! 2005): the simplex holding a point, each corner's weight `max(½ − r², 0)⁴`, and from these
-//! the noise value, its analytic gradient and the one-sample estimator. [`simplex2`] and
-//! [`simplex4`] are built on it, and so is [`simplex3_grad`]; [`simplex3`] and its estimator
-//! keep their own lane forms.
+//! the noise value, its analytic gradient and the one-sample estimator. [`simplex2`] and its
+//! estimator and the gradients of every dimension are built on it; the 3D and 4D values and
+//! estimators run as lane kernels (`simplex::lanes`), which the tests compare with this
+//! lattice's forms bit for bit.
 //!
 //! **Why the radius is ½.** The skewed cubic lattice splits into simplices whose altitudes are
 //! all `√½` in 2D, 3D and 4D alike (the squared distance from any corner to the plane of its
