@@ -9,8 +9,6 @@ use super::estimators::{roulette_in_range, sanitize_xi};
 use crate::hash::{PRIME, corner, point3};
 use crate::lanes::{self, F4, I4};
 #[cfg(test)]
-use crate::math::split_lanes;
-#[cfg(test)]
 use crate::math::{exp2_neg, in_split_range, split, split_in_range};
 use crate::math::{ln, on_cells, sqrt};
 
@@ -415,8 +413,7 @@ mod tests {
         let mut seen = 0;
         points(|p| {
             seen += 1;
-            let (cell, f) = split_lanes(F4::from3(p));
-            let groups = groups_lanes(cell, f, 9);
+            let groups = on_cells(F4::from3(p), |cell, f| groups_lanes(cell, f, 9));
             let want = Hood::new(p).distances(9);
             for (c, want) in want.iter().enumerate() {
                 let g = groups[c / 4];
