@@ -186,5 +186,35 @@ fn noise(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, noise);
+/// The same functions called through a function pointer, as a renderer does that keeps its
+/// noise behind `fn` values or calls it across a crate without inlining: the point travels
+/// in memory, and how the callee reads it decides whether the read can be forwarded from the
+/// caller's stores (a read spanning two of them stalled every call until `F4::from3` read
+/// the point in the pieces callers store it in).
+fn called(c: &mut Criterion) {
+    let (pts, xis) = points();
+    let mut g = c.benchmark_group("noise3d-call");
+    g.throughput(Throughput::Elements(N as u64));
+    g.sample_size(10)
+        .measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500));
+    type Call = fn([f32; 3], f32) -> f32;
+    let calls: [(&str, Call); 6] = [
+        ("perlin3/deterministic", |p, _| Perlin::new(1).sample(p)),
+        ("perlin3/stochastic", |p, x| Perlin::new(1).estimate(p, x)),
+        ("simplex3/deterministic", |p, _| Simplex::new(1).sample(p)),
+        ("simplex3/stochastic", |p, x| Simplex::new(1).estimate(p, x)),
+        ("voronoi3/stochastic", |p, x| {
+            SmoothVoronoi::new(1).estimate(p, x)
+        }),
+        ("worley3/deterministic", |p, _| Worley::new(1).f1(p)),
+    ];
+    for (name, f) in calls {
+        let f = black_box(f);
+        bench!(g, name, pts, xis, |p, x| f(p, x));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, noise, called);
 criterion_main!(benches);
