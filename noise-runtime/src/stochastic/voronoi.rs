@@ -166,7 +166,7 @@ const OFFSETS: [[[f32; 4]; 3]; 7] = {
 #[inline]
 pub fn worley3_f1(p: [f32; 3], seed: u32) -> f32 {
     // All 27 cells, branch-free: faster than pruning, whose branches are unpredictable.
-    on_cells(F4::from3(p), |cell, f| {
+    on_cells!(F4::from3(p), |cell, f| {
         sqrt(min_lanes(&groups_lanes(cell, f, seed)))
     })
 }
@@ -207,7 +207,7 @@ const EXP_SCALE: f32 = -32.0 * core::f32::consts::LOG2_E;
 /// exponential, and cost 81 ns against 64.
 #[inline]
 pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
-    on_cells(F4::from3(p), |cell, f| {
+    on_cells!(F4::from3(p), |cell, f| {
         let mut sums = F4::splat(0.0);
         for g in groups_lanes(cell, f, seed) {
             let y = (g.sqrt() * F4::splat(EXP_SCALE)).max(F4::splat(-125.0));
@@ -233,24 +233,18 @@ fn smooth_voronoi3_scalar(p: [f32; 3], seed: u32) -> f32 {
 /// (eq. 5). `q` is clamped to `[0, 1)`.
 #[inline(always)]
 pub fn smooth_voronoi3_stochastic(p: [f32; 3], seed: u32, q: f32, xi: f32) -> f32 {
-    let [x, y, z] = p;
-    smooth_voronoi3_stochastic_of(x, y, z, seed, q, xi)
-}
-
-/// [`smooth_voronoi3_stochastic`] with the coordinates in registers. Where the estimator is
-/// not inlined, an array argument is passed by a pointer to a copy the caller has just
-/// stored, with one 8-byte and one 4-byte store; the lane split read the point back with a
-/// load across the two, which the processor cannot forward from the stores (a stall of each
-/// call: 75 ns a sample in the report against 41 inlined).
-#[inline(always)]
-fn smooth_voronoi3_stochastic_of(x: f32, y: f32, z: f32, seed: u32, q: f32, xi: f32) -> f32 {
-    let p = [x, y, z];
+    // The point read once into lanes, in the pieces a caller that passes it in memory stored
+    // it in (`F4::from3`): read back as scalars, or across the two stores, it stalled every
+    // call that was not inlined (36 ns a sample against 16).
+    let v = F4::from3(p);
     let t = sanitize_xi(xi) * 8.0;
     // t is in [0, 8): its integer part is the cell's 3 bits, and t minus it is exact, in [0, 1).
     let bits = lanes::trunc1(t) as u32 & 7;
     let rest = t - bits as f32;
-    let approx = picked_distance(p, seed, bits).min(0.5);
-    roulette_in_range(q, rest, approx, || smooth_voronoi3_of(x, y, z, seed))
+    let approx = picked_distance(v, seed, bits).min(0.5);
+    roulette_in_range(q, rest, approx, || {
+        smooth_voronoi3_of(v.x(), v.y(), v.z(), seed)
+    })
 }
 
 /// [`smooth_voronoi3`] called with the coordinates in registers, for the estimator's rare
@@ -265,13 +259,11 @@ fn smooth_voronoi3_of(x: f32, y: f32, z: f32, seed: u32) -> f32 {
 /// The distance from `p` to the feature point of the cell that `bits` picks among the 2×2×2
 /// cells nearest `p`: bit `a` set, the farther of the two along axis `a`.
 #[inline(always)]
-fn picked_distance(p: [f32; 3], seed: u32, bits: u32) -> f32 {
+fn picked_distance(p: F4, seed: u32, bits: u32) -> f32 {
     // For a point in the split range its split on lanes; the offset it gives may be exactly 1
     // where the general split steps to the next cell with offset 0, which picks the same cells
     // at the same offsets (the tests compare the two).
-    on_cells(F4::from3(p), |cell, f| {
-        picked_distance_lanes(cell, f, seed, bits)
-    })
+    on_cells!(p, |cell, f| picked_distance_lanes(cell, f, seed, bits))
 }
 
 /// [`picked_distance`] on lanes : per axis
@@ -343,7 +335,7 @@ mod tests {
                     low + ((bits >> a) & 1) as usize
                 });
                 let want = sqrt(h.d2(idx[0], idx[1], idx[2], 5));
-                let got = picked_distance(p, 5, bits);
+                let got = picked_distance(F4::from3(p), 5, bits);
                 assert_eq!(got.to_bits(), want.to_bits(), "p {p:?}, bits {bits}");
             }
         });
@@ -413,7 +405,7 @@ mod tests {
         let mut seen = 0;
         points(|p| {
             seen += 1;
-            let groups = on_cells(F4::from3(p), |cell, f| groups_lanes(cell, f, 9));
+            let groups = on_cells!(F4::from3(p), |cell, f| groups_lanes(cell, f, 9));
             let want = Hood::new(p).distances(9);
             for (c, want) in want.iter().enumerate() {
                 let g = groups[c / 4];

@@ -16,13 +16,13 @@ use crate::math::on_cells;
 /// [`perlin3`](super::perlin3).
 #[inline(always)]
 pub(super) fn perlin3(p: [f32; 3], seed: u32) -> f32 {
-    on_cells(F4::from3(p), |cell, f| perlin3_cell(cell, f, seed))
+    on_cells!(F4::from3(p), |cell, f| perlin3_cell(cell, f, seed))
 }
 
 /// [`perlin3_stochastic`](super::perlin3_stochastic).
 #[inline(always)]
 pub(super) fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
-    on_cells(F4::from3(p), |cell, f| {
+    on_cells!(F4::from3(p), |cell, f| {
         perlin3_stochastic_cell(cell, f, seed, Narrowing::new(xi))
     })
 }
@@ -30,13 +30,13 @@ pub(super) fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
 /// [`perlin4`](super::perlin4).
 #[inline(always)]
 pub(super) fn perlin4(p: [f32; 4], seed: u32) -> f32 {
-    on_cells(F4::from4(p), |cell, f| perlin4_cell(cell, f, seed))
+    on_cells!(F4::from4(p), |cell, f| perlin4_cell(cell, f, seed))
 }
 
 /// [`perlin4_stochastic`](super::perlin4_stochastic).
 #[inline(always)]
 pub(super) fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
-    on_cells(F4::from4(p), |cell, f| {
+    on_cells!(F4::from4(p), |cell, f| {
         perlin4_stochastic_cell(cell, f, seed, xi)
     })
 }
@@ -74,7 +74,7 @@ fn grad(h: u32) -> F4 {
 /// is (as `0 · freq` is).
 #[inline(always)]
 pub(crate) fn perlin3_lanes(v: F4, seed: u32) -> f32 {
-    on_cells(v, |cell, f| perlin3_cell(cell, f, seed))
+    on_cells!(v, |cell, f| perlin3_cell(cell, f, seed))
 }
 
 /// The 3D kernel: [`perlin3`](super::perlin3) at offset `f` (lanes 0–2) in cell `cell`.

@@ -22,7 +22,7 @@ fn on_corners<R>(p: [f32; 3], kernel: impl FnOnce([[i32; 3]; 4], [F4; 4]) -> R) 
     let v = F4::from3(p);
     let s = v.sum3() * (1.0 / 3.0);
     let q = v + F4::splat(s);
-    on_cells(q, |cell, f| {
+    on_cells!(q, |cell, f| {
         let (c, d) = corners_of(cell, f);
         kernel(c, d)
     })
@@ -110,7 +110,7 @@ impl Corners4 {
     fn on<R>(p: [f32; 4], seed: u32, kernel: impl FnOnce(&Self) -> R) -> R {
         let v = F4::from4(p);
         let q = v + F4::splat(v.sum4() * SKEW4.skew);
-        on_cells(q, |cell, f| kernel(&Corners4::of(cell, f, seed)))
+        on_cells!(q, |cell, f| kernel(&Corners4::of(cell, f, seed)))
     }
 
     /// The corners of a skewed point split into `cell` and `f`.
