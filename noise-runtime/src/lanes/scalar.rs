@@ -65,10 +65,14 @@ impl F4 {
         F4(p)
     }
 
-    /// `[x, y, z, 0]`.
+    /// `[x, y, z, 0]`, read as an 8-byte and a 4-byte load, as the SSE2 sibling reads it: the
+    /// pieces a caller stores a point in when it passes it in memory (see there).
     #[inline(always)]
+    #[allow(unsafe_code)]
     pub(crate) fn from3(p: [f32; 3]) -> F4 {
-        F4([p[0], p[1], p[2], 0.0])
+        // SAFETY: bytes 0..8 of the 12-byte array, read without an alignment requirement.
+        let [x, y] = unsafe { core::ptr::read_unaligned(p.as_ptr().cast::<[f32; 2]>()) };
+        F4([x, y, p[2], 0.0])
     }
 
     /// `v` in every lane.
