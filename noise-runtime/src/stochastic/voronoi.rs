@@ -207,7 +207,13 @@ const EXP_SCALE: f32 = -32.0 * core::f32::consts::LOG2_E;
 /// exponential, and cost 81 ns against 64.
 #[inline]
 pub fn smooth_voronoi3(p: [f32; 3], seed: u32) -> f32 {
-    on_cells!(F4::from3(p), |cell, f| {
+    smooth_voronoi3_lanes(F4::from3(p), seed)
+}
+
+/// [`smooth_voronoi3`] of a point already in lanes.
+#[inline(always)]
+fn smooth_voronoi3_lanes(v: F4, seed: u32) -> f32 {
+    on_cells!(v, |cell, f| {
         let mut sums = F4::splat(0.0);
         for g in groups_lanes(cell, f, seed) {
             let y = (g.sqrt() * F4::splat(EXP_SCALE)).max(F4::splat(-125.0));
@@ -242,18 +248,15 @@ pub fn smooth_voronoi3_stochastic(p: [f32; 3], seed: u32, q: f32, xi: f32) -> f3
     let bits = lanes::trunc1(t) as u32 & 7;
     let rest = t - bits as f32;
     let approx = picked_distance(v, seed, bits).min(0.5);
-    roulette_in_range(q, rest, approx, || {
-        smooth_voronoi3_of(v.x(), v.y(), v.z(), seed)
-    })
+    roulette_in_range(q, rest, approx, || smooth_voronoi3_of(v, seed))
 }
 
-/// [`smooth_voronoi3`] called with the coordinates in registers, for the estimator's rare
-/// full evaluation: with the array, the estimator kept a copy of the point on its stack for
-/// the call and read its lanes back from that copy in the same way (80 ns a sample against
-/// 53 in a probe).
+/// [`smooth_voronoi3`] of the estimator's point in lanes, for its rare full evaluation, out of
+/// line. The register goes over whole: rebuilt into an array, the point was stored in pieces
+/// and read back across them, a stall on every full evaluation.
 #[inline(never)]
-fn smooth_voronoi3_of(x: f32, y: f32, z: f32, seed: u32) -> f32 {
-    smooth_voronoi3([x, y, z], seed)
+fn smooth_voronoi3_of(v: F4, seed: u32) -> f32 {
+    smooth_voronoi3_lanes(v, seed)
 }
 
 /// The distance from `p` to the feature point of the cell that `bits` picks among the 2×2×2
