@@ -94,7 +94,14 @@ fn simplex3_stochastic_of(c: [[i32; 3]; 4], d: [F4; 4], seed: u32, xi: f32) -> f
     }
     let target = (sanitize_xi(xi) * total).min(f32::from_bits(total.to_bits() - 1));
     let k = ends.iter().map(|&e| (target >= e) as usize).sum::<usize>() & 3;
-    SCALE * total * (grad(c[k], seed) * d[k]).sum3()
+    // Corner `k`'s lattice point from the ranks of the offsets (`rank_order`: corner `k` has
+    // stepped along the axes whose rank is at least `3 − k`), in registers, rather than read
+    // from the array by `k`, which put a store and a load on the chain from ξ to the hash.
+    let ck: [i32; 3] = core::array::from_fn(|a| {
+        let rank = c[1][a].wrapping_sub(c[0][a]) + c[2][a].wrapping_sub(c[0][a]);
+        c[0][a].wrapping_add((rank + k as i32 >= 3) as i32)
+    });
+    SCALE * total * (grad(ck, seed) * d[k]).sum3()
 }
 
 /// The five corners of the 4D simplex holding a point: per corner, the hash of its lattice
