@@ -114,10 +114,11 @@ pub fn exp_neg(x: f32) -> f32 {
 }
 
 /// `2^y` for `y ∈ [−125, 0]` (the caller clamps), in f32 with relative error below 3e-7:
-/// `2^k · 2^r` for the nearest integer `k` and `r ∈ [−½, ½]`, `2^r` by the polynomial of the lane form in
-/// Estrin's scheme, whose chain of dependent operations is 6 long instead of Horner's 10.
-/// For `k ≥ −125` the result is a normal float (no slow subnormal arithmetic). The scalar
-/// statement of the lane kernels' [`lanes::exp2_neg`], which the tests compare with it.
+/// `2^k · 2^r` for the nearest integer `k` and `r ∈ [−½, ½]`, `2^r` by the lane layer's
+/// `EXP2_POLY` in Estrin's scheme, whose chain of dependent operations is 6 long instead of
+/// Horner's 10. For `k ≥ −125` the result is a normal float (no slow subnormal arithmetic).
+/// The scalar statement of the lane kernels' `lanes::exp2_neg`, which the tests compare with
+/// it.
 #[cfg(test)]
 pub(crate) fn exp2_neg(y: f32) -> f32 {
     debug_assert!((-125.0..=0.0).contains(&y), "y = {y}");
