@@ -55,7 +55,7 @@ pub(crate) fn nested_corner<const D: usize>(xi: f32, t: [f32; D]) -> Corner<D> {
     Corner(t.map(|ta| n.upper(ta)))
 }
 
-/// The interval [`nested_corner`] narrows, one decision at a time: ξ's residue `r` in it and
+/// The interval `nested_corner` narrows, one decision at a time: ξ's residue `r` in it and
 /// its length `l`, in fixed point. For estimators that interleave their own work with the
 /// decisions (the 3D Perlin estimator hashes as it decides).
 #[derive(Clone, Copy)]
@@ -95,7 +95,7 @@ impl Narrowing {
         self.upper_fixed(fixed(t))
     }
 
-    /// [`Narrowing::upper`] with the weight already in fixed point (`fixed(t)`, as
+    /// `Narrowing::upper` with the weight already in fixed point (`fixed(t)`, as
     /// [`lanes::fixed`](crate::lanes::fixed) makes it for four weights at once).
     #[inline(always)]
     pub(crate) fn upper_fixed(&mut self, t: u64) -> u32 {
@@ -113,7 +113,7 @@ impl Narrowing {
 }
 
 /// The two decisions of a fresh [`Narrowing`] (the corner of a 2D cell), exactly as two
-/// [`Narrowing::upper`] calls make them, but with the second decision's two candidate cuts
+/// `Narrowing::upper` calls make them, but with the second decision's two candidate cuts
 /// computed before the first decision is known: the interval of the second decision is one of
 /// two, both products of the weights alone. That takes a multiply and a handful of dependent
 /// moves off the chain from the weights to the corner, where the 2D estimator spends its time
@@ -143,7 +143,7 @@ pub(crate) fn fresh_corner2(xi: f32, t: [f32; 2]) -> [u32; 2] {
     [up0 as u32, up1 as u32]
 }
 
-/// Fractional bits of [`nested_corner`]'s fixed point.
+/// Fractional bits of `nested_corner`'s fixed point.
 const FIXED_BITS: u32 = 23;
 
 /// `t · 2^23` rounded to nearest, for `t ∈ [0, 1]`: the mantissa of `1 + t`, read from its

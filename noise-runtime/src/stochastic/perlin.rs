@@ -181,7 +181,7 @@ pub fn perlin3_stochastic(p: [f32; 3], seed: u32, xi: f32) -> f32 {
 }
 
 /// A 4D point's offset in its cell and the hash products of the cell's lower corner per axis,
-/// `cell[a]·PRIME[a]` (the upper corner's are `+ PRIME[a]`; see [`cell_products`]).
+/// `cell[a]·PRIME[a]` (the upper corner's are `+ PRIME[a]`), for [`perlin4_grad`].
 #[inline(always)]
 fn split4(p: [f32; 4], sp: impl Fn(f32) -> (i32, f32)) -> ([u32; 4], [f32; 4]) {
     let mut lo = [0u32; 4];

@@ -95,8 +95,8 @@ impl Hood {
     }
 }
 
-/// The 27 cells in the order of [`Hood::distances`] (z, then y, then x) in seven groups of four,
-/// on lanes, for a point split by [`split_lanes`]: lane `l` of group `g` is cell
+/// The 27 cells in the order of `Hood::distances` (the tests' scalar neighbourhood) (z, then y, then x) in seven groups of four,
+/// on lanes, for a point split by [`on_cells!`](crate::math::on_cells): lane `l` of group `g` is cell
 /// `4g + l`, and the last group's lane 3, past the 27, has distance `f32::MAX` (a term of 0).
 ///
 /// Four cells' feature points are four 16-byte table reads transposed into x, y and z lanes;
