@@ -277,25 +277,9 @@ pub fn sqrt_f64(x: f64) -> f64 {
 #[inline(always)]
 #[doc(hidden)]
 pub fn split_in_range(x: f32) -> (i32, f32) {
-    let (r, f) = nearest(x);
-    // Strictly negative, not −0: an integer test of the bits, as in `split`.
-    let down = (f.to_bits() > 0x8000_0000) as u32;
-    (
-        r - down as i32,
-        f + f32::from_bits(down.wrapping_neg() & 0x3f80_0000),
-    )
-}
-
-/// The nearest integer `r` to `x` and `x − r ∈ [−½, ½]`, for `|x| < 2^22`: the first half of
-/// [`split_in_range`] (see there).
-#[inline(always)]
-fn nearest(x: f32) -> (i32, f32) {
-    const MAGIC: f32 = 12_582_912.0;
-    let y = x + MAGIC;
-    (
-        y.to_bits().wrapping_sub(MAGIC.to_bits()) as i32,
-        x - (y - MAGIC),
-    )
+    // Written once, in the portable lane backend, whose lanes run it.
+    let (c, f) = crate::lanes::scalar::split1(x);
+    (c as i32, f)
 }
 
 /// `on_cells!(v, |cell, f| body)`: `body` with the cells and offsets of the four lanes of

@@ -307,23 +307,26 @@ pub(crate) fn in_split_range(v: F4) -> bool {
     any >> 31 == 0
 }
 
-/// The lane split of [`lanes::split_in_range`](super::split_in_range), lane by lane: the
-/// nearest integer from the bits of `x + 1.5·2^23`, then one step down where the remainder is
-/// strictly negative (not −0).
+/// The lane split of [`lanes::split_in_range`](super::split_in_range), lane by lane
+/// ([`split1`]).
 #[inline(always)]
 pub(crate) fn split_in_range(v: F4) -> (I4, F4) {
+    let s = v.0.map(split1);
+    (I4(s.map(|(c, _)| c)), F4(s.map(|(_, f)| f)))
+}
+
+/// The split of one value with `|x| < 2^22` (the scalar
+/// [`math::split_in_range`](crate::math::split_in_range), which is this): the nearest integer
+/// from the bits of `x + 1.5·2^23`, then one step down where the remainder is strictly
+/// negative (not −0). The cell as `u32` bits of the `i32`.
+#[inline(always)]
+pub(crate) fn split1(x: f32) -> (u32, f32) {
     const MAGIC: f32 = 12_582_912.0;
-    let mut cell = [0u32; 4];
-    let mut f = [0.0f32; 4];
-    for a in 0..4 {
-        let y = v.0[a] + MAGIC;
-        let r = y.to_bits().wrapping_sub(MAGIC.to_bits());
-        let fa = v.0[a] - (y - MAGIC);
-        let down = 0u32.wrapping_sub((fa.to_bits() > 0x8000_0000) as u32);
-        cell[a] = r.wrapping_add(down);
-        f[a] = fa + f32::from_bits(down & 0x3f80_0000);
-    }
-    (I4(cell), F4(f))
+    let y = x + MAGIC;
+    let r = y.to_bits().wrapping_sub(MAGIC.to_bits());
+    let f = x - (y - MAGIC);
+    let down = 0u32.wrapping_sub((f.to_bits() > 0x8000_0000) as u32);
+    (r.wrapping_add(down), f + f32::from_bits(down & 0x3f80_0000))
 }
 
 /// `t as i32` for `|t| < 2^31` (`i32::MIN` for NaN and out of range, as `cvttss2si`).
