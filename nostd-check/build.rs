@@ -1,3 +1,3 @@
 fn main() {
-    build_assets::bake("noise.toml").unwrap_or_else(|e| panic!("{e}"));
+    build_assets::bake_or_exit("noise.toml");
 }

@@ -49,7 +49,7 @@
 //! ```ignore
 //! // build.rs
 //! fn main() {
-//!     build_assets::bake("noise.toml").unwrap_or_else(|e| panic!("{e}"));
+//!     build_assets::bake_or_exit("noise.toml"); // an error: Cargo `error:` lines, no panic
 //! }
 //!
 //! // src/main.rs
@@ -117,7 +117,7 @@
 //! | `white` | independent uniform values | 1–4 | — |
 //! | `independent2d` | an independent 2D mask per slice | 2–4 | `sigma` (1.9), `initial_density` |
 //! | `golden` | one 2D mask animated by `t·φ` per frame | 3 | `sigma` (1.9), `initial_density` |
-//! | `fast` | FAST filter-adapted mask, 2D or 2D × time (Donnelly et al. 2024) | 2–3 | `sample_space` (`"scalar"`, `"circle"`, `"vec2"`…`"vec4"`, `"sphere"`, `"hemisphere"`, `"cosine_hemisphere"`), `distribution` (`"uniform"`, `"tent"`, `"gauss"`; scalar only), `spatial_filter` (`{ kind = "gauss", sigma = 1.3435 }`, `{ kind = "box", size = 5 }`, `{ kind = "binomial", order = 2 }`, `{ kind = "none" }`), `temporal_filter` (`{ kind = "ema", alpha = 0.1, beta = 0.1 }` for 3 dims — `beta = 0` is a plain EMA at its steady state over the looping texture, `beta > 0` adds eq. 17's history rejection — `gauss`, `box`, `none`), `combine` (`"product"` or `{ separate = w }`), `start` (`"ign"`, the default for scalars: IGN's per-slice ranks; `"random"`), `iterations` (until converged) |
+//! | `fast` | FAST filter-adapted mask, 2D or 2D × time (Donnelly et al. 2024) | 2–3 | `sample_space` (`"scalar"`, `"circle"`, `"vec2"`…`"vec4"`, `"sphere"`, `"hemisphere"`, `"cosine_hemisphere"`), `distribution` (`"uniform"`, `"tent"`, `"gauss"`; scalar only), `spatial_filter` (`{ kind = "gauss", sigma = 1.3435 }`, `{ kind = "box", size = 5 }`, `{ kind = "binomial", order = 2 }`, `{ kind = "none" }`), `temporal_filter` (the filter the game runs; default for 3 dims `{ kind = "ema", alpha = 0.1, beta = 0 }`, a plain EMA at its steady state over the looping texture — `beta > 0` adds eq. 17's history rejection, as EA's published texture (`beta = 0.1`) — or `gauss`, `box`, `none`), `combine` (`"product"` or `{ separate = w }`), `start` (`"ign"`, the default for scalars: IGN's per-slice ranks; `"random"`), `iterations` (until converged) |
 //!
 //! One example per kind, in spec-file form (the macro takes the same as `key: value`):
 //!

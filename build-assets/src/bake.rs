@@ -48,6 +48,30 @@ pub fn bake(spec: impl AsRef<Path>) -> Result<Report, Error> {
     Bake::new(spec).run()
 }
 
+/// Bakes `spec` from a build script and, on failure, reports the error the way Cargo shows a
+/// build script's errors best, then ends the script: the whole of `build.rs` is
+///
+/// ```no_run
+/// fn main() {
+///     build_assets::bake_or_exit("noise.toml");
+/// }
+/// ```
+///
+/// See [`Bake::run_or_exit`].
+pub fn bake_or_exit(spec: impl AsRef<Path>) -> Report {
+    Bake::new(spec).run_or_exit()
+}
+
+/// Writes `error` as Cargo build-script directives, one `cargo::error=` line per line of the
+/// message (a directive ends at its line break). Cargo prints each as `error: <crate>: …` at the
+/// top of its output, before anything else it says of the failure.
+pub fn write_cargo_error(error: &Error, out: &mut impl std::io::Write) -> std::io::Result<()> {
+    for line in error.to_string().lines() {
+        writeln!(out, "cargo::error={line}")?;
+    }
+    out.flush()
+}
+
 /// The line that announces a slow generation.
 pub fn announce(name: &str, what: &str, seconds: f64, dir: &Path) -> String {
     format!(
@@ -113,6 +137,25 @@ impl Bake {
     pub fn ktx2_dir(mut self, dir: impl Into<PathBuf>) -> Self {
         self.ktx2_dir = Some(dir.into());
         self
+    }
+
+    /// Runs the bake from a build script, ending the script on failure with the error shown as
+    /// Cargo shows a build script's own errors: the message, line by line, as `cargo::error=`
+    /// directives ([`write_cargo_error`]; every Cargo this crate's `rust-version` allows reads
+    /// them), and no panic, so no backtrace however `RUST_BACKTRACE` is set.
+    ///
+    /// The script then exits with status 0 on purpose: the logged errors fail the build
+    /// ("build script logged errors"), whereas a non-zero exit makes Cargo append its
+    /// "failed to run custom build command" block with the script's whole output repeated
+    /// below the message.
+    pub fn run_or_exit(self) -> Report {
+        match self.run() {
+            Ok(report) => report,
+            Err(e) => {
+                let _ = write_cargo_error(&e, &mut std::io::stdout().lock());
+                std::process::exit(0)
+            }
+        }
     }
 
     /// Runs the bake.

@@ -173,6 +173,15 @@ fn profile_parent(out: &Path) -> Option<PathBuf> {
     None
 }
 
+/// The directory a spec file lies in. A bare file name (`"noise.toml"`, as build scripts
+/// write it) has the empty path as its parent, which names no directory: it means `.`.
+fn spec_dir(file: &Path) -> PathBuf {
+    match file.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
 /// Joins a spec file's `cache_dir` to the file's directory, refusing absolute paths and `..`
 /// after a normal component, and anything outside the workspace that holds the spec file (the
 /// outermost directory above it with a `Cargo.lock`), when there is one.
@@ -193,8 +202,8 @@ fn spec_relative(file: &Path, value: &str, root: Option<&Path>) -> Result<PathBu
             _ => return Err("is absolute"),
         }
     }
-    let base = file.parent().unwrap_or(Path::new("."));
-    let base = fs::canonicalize(base).unwrap_or_else(|_| base.to_path_buf());
+    let base = spec_dir(file);
+    let base = fs::canonicalize(&base).unwrap_or(base);
     let mut out = base.clone();
     for c in rel.components() {
         match c {
@@ -251,9 +260,7 @@ impl Locator {
         } else if let Some(d) = &self.explicit {
             d.clone()
         } else if let Some((file, value)) = &self.spec_cache_dir {
-            let base = file.parent().filter(|p| !p.as_os_str().is_empty());
-            let base = base.map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-            let ws = fs::canonicalize(&base)
+            let ws = fs::canonicalize(spec_dir(file))
                 .ok()
                 .and_then(|b| workspace_root(&b));
             spec_relative(file, value, ws.as_deref()).map_err(|why| Error::CacheDir {

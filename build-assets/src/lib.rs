@@ -25,7 +25,7 @@ pub mod spec;
 pub mod texture;
 pub mod vac;
 
-pub use bake::{Bake, BakeError, bake};
+pub use bake::{Bake, BakeError, bake, bake_or_exit};
 pub use error::{Error, Warning};
 pub use generate::{ALGORITHM_VERSION, generate};
 pub use spec::{SpecError, TextureSpec};

@@ -403,6 +403,108 @@ fn spec_cache_dirs_stay_in_the_workspace_and_the_macro_finds_them() {
     assert_eq!(got.as_deref(), Some("committed"));
 }
 
+/// The child side of the bare-file-name test: bakes `noise.toml` named as build scripts name
+/// it, relative to the working directory the parent set.
+#[test]
+fn bare_spec_name_child() {
+    let Some(out) = std::env::var_os("NOISEBAKE_BARE_TEST_OUT") else {
+        return;
+    };
+    let report = Bake::new("noise.toml")
+        .out_dir(PathBuf::from(out))
+        .cargo_output(false)
+        .run()
+        .unwrap_or_else(|e| panic!("BAKE FAILED: {e}"));
+    println!("CACHE_DIR={}", report.cache_dir.display());
+}
+
+/// `bake("noise.toml")` with a top-level `cache_dir`, exactly as the README's build script
+/// writes it: the bare name's parent is the empty path, which must mean the working directory
+/// (it once made every committed cache "leave the workspace").
+#[test]
+fn a_bare_spec_file_name_finds_its_committed_cache() {
+    let ws = tmp("bare");
+    std::fs::write(ws.join("Cargo.lock"), "").unwrap();
+    let krate = ws.join("game");
+    std::fs::create_dir_all(&krate).unwrap();
+    std::fs::write(
+        krate.join("noise.toml"),
+        format!("cache_dir = \"noise-cache\"\n[[texture]]\nname = \"STBN\"\n{STBN}\n"),
+    )
+    .unwrap();
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args(["--exact", "bare_spec_name_child", "--nocapture"])
+        .current_dir(&krate)
+        .env("NOISEBAKE_BARE_TEST_OUT", ws.join("out"))
+        .env_remove("NOISEBAKE_CACHE_DIR")
+        .env_remove("NOISEBAKE_OFFLINE")
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let want = std::fs::canonicalize(&krate).unwrap().join("noise-cache");
+    assert!(
+        stdout.contains(&format!("CACHE_DIR={}", want.display())),
+        "{stdout}"
+    );
+    assert_eq!(files_ending(&want, &[".nbk"]).len(), 1);
+}
+
+/// The child side of the build-script error test: `bake_or_exit` on the spec the parent names.
+#[test]
+fn bake_or_exit_child() {
+    let Some(spec) = std::env::var_os("NOISEBAKE_EXIT_TEST_SPEC") else {
+        return;
+    };
+    build_assets::Bake::new(PathBuf::from(spec))
+        .out_dir(std::env::temp_dir())
+        .cargo_output(false)
+        .run_or_exit();
+    println!("NOT REACHED");
+}
+
+/// A build script's failure is shown as Cargo's own errors: every line of the message as a
+/// `cargo::error=` directive, no panic (so no backtrace, even with `RUST_BACKTRACE=1`), and the
+/// script ends there.
+#[test]
+fn bake_or_exit_reports_errors_as_cargo_directives() {
+    let dir = tmp("exit");
+    let file = dir.join("noise.toml");
+    std::fs::write(
+        &file,
+        "[[texture]]\nname = \"T\"\nkind = \"stbn\"\ndims = [64, 0, 16]\n",
+    )
+    .unwrap();
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args(["--exact", "bake_or_exit_child", "--nocapture"])
+        .env("NOISEBAKE_EXIT_TEST_SPEC", &file)
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .unwrap();
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr),
+    );
+    let directives: Vec<&str> = stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("cargo::error="))
+        .collect();
+    assert!(directives.len() >= 2, "{stdout}");
+    assert!(
+        directives[0].contains("noise.toml:4") && stdout.contains("`dims[1]` must be at least 1"),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("NOT REACHED"), "{stdout}");
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("backtrace"),
+        "{stderr}"
+    );
+}
+
 #[test]
 fn bake_errors_name_file_line_and_key() {
     let dir = tmp("errors");

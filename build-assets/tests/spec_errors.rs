@@ -1,7 +1,7 @@
 //! Bad specs are errors that name the key, point at it, and never panic or allocate first.
 
 mod common;
-use common::error;
+use common::{error, spec};
 
 fn has(msg: &str, parts: &[&str]) {
     for p in parts {
@@ -245,4 +245,33 @@ fn names_longer_than_a_file_name_allows_are_refused() {
         .unwrap_err()
         .render("noise.toml", &text);
     has(&e, &["300 characters", "file name"]);
+}
+
+/// Left out, FAST's temporal filter is the plain EMA (α 0.1, no history rejection) that a
+/// game's accumulation runs, and so is an `ema` that leaves out `beta`: the same spec, the same
+/// cache key as writing it out. EA's β 0.1 must be asked for.
+#[test]
+fn fast_defaults_to_the_plain_ema_games_run() {
+    use build_assets::fast::TemporalFilter;
+    let temporal = |body: &str| match spec(body).kind {
+        build_assets::spec::Kind::Fast(p) => p.temporal,
+        k => panic!("not fast: {k:?}"),
+    };
+    let plain = TemporalFilter::Ema {
+        alpha: 0.1,
+        beta: 0.0,
+    };
+    let base = "kind = \"fast\"\ndims = [16, 16, 8]";
+    assert_eq!(temporal(base), plain);
+    let no_beta = format!("{base}\ntemporal_filter = {{ kind = \"ema\", alpha = 0.1 }}");
+    assert_eq!(temporal(&no_beta), plain);
+    let explicit = format!("{base}\ntemporal_filter = {{ kind = \"ema\", alpha = 0.1, beta = 0 }}");
+    let key = build_assets::cache::key;
+    assert_eq!(key(&spec(base)), key(&spec(&explicit)));
+    let ea = format!("{base}\ntemporal_filter = {{ kind = \"ema\", alpha = 0.1, beta = 0.1 }}");
+    assert_ne!(key(&spec(base)), key(&spec(&ea)));
+    assert_eq!(
+        temporal("kind = \"fast\"\ndims = [16, 16]"),
+        TemporalFilter::None
+    );
 }

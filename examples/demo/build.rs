@@ -4,10 +4,7 @@
 use std::fmt::Write;
 
 fn main() {
-    let report = match build_assets::bake("noise.toml") {
-        Ok(r) => r,
-        Err(e) => panic!("{e}"),
-    };
+    let report = build_assets::bake_or_exit("noise.toml");
     let mut summary = String::new();
     for t in &report.textures {
         let _ = writeln!(

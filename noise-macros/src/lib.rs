@@ -182,11 +182,12 @@ impl Parse for Input {
 /// noise_texture!(pub DITHER = blue2d { dims: [64, 64], seed: 1, sigma: 1.9 });
 /// // Spatiotemporal blue noise with flat per-frame histograms.
 /// noise_texture!(STBN = stbn { dims: [64, 64, 16], seed: 7, format: u16, histogram: slice });
-/// // FAST for a 5×5 box filter and an exponential moving average.
+/// // FAST for a 5×5 box filter and a plain exponential moving average (no history
+/// // rejection: beta 0, also the default when `temporal_filter` is left out).
 /// noise_texture!(pub(crate) FAST = fast {
 ///     dims: [32, 32, 16],
 ///     spatial_filter: { kind: box, size: 5 },
-///     temporal_filter: { kind: ema, alpha: 0.1, beta: 0.1 },
+///     temporal_filter: { kind: ema, alpha: 0.1, beta: 0 },
 /// });
 ///
 /// let v: u8 = DITHER.get(x, y);

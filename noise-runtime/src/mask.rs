@@ -95,21 +95,21 @@ macro_rules! mask {
             /// The texel at the given coordinates, each wrapped toroidally onto its axis.
             #[must_use]
             #[inline(always)]
-            pub fn get<C: Coord>(&self, $($c: C),+) -> T {
+            pub fn get(&self, $($c: impl Coord),+) -> T {
                 T::read(self.bytes, self.index($($c.wrap($d)),+))
             }
 
             /// Channel 0 of [`get`](Self::get) normalised to `[0, 1)`.
             #[must_use]
             #[inline(always)]
-            pub fn get_unit<C: Coord>(&self, $($c: C),+) -> f32 {
+            pub fn get_unit(&self, $($c: impl Coord),+) -> f32 {
                 self.get($($c),+).unit(0)
             }
 
             /// Channel `c` of a unit-vector texture (stored as `0.5 + 0.5·v`) decoded to `[-1, 1]`.
             #[must_use]
             #[inline(always)]
-            pub fn get_signed<C: Coord>(&self, $($c: C),+, channel: usize) -> f32 {
+            pub fn get_signed(&self, $($c: impl Coord),+, channel: usize) -> f32 {
                 let t = self.get($($c),+);
                 (t.unit(channel) * T::SIGNED_SCALE * 2.0 - 1.0).clamp(-1.0, 1.0)
             }
@@ -118,7 +118,7 @@ macro_rules! mask {
             /// a flat histogram the on fraction of every slice is `p` to within one texel.
             #[must_use]
             #[inline(always)]
-            pub fn threshold<C: Coord>(&self, $($c: C),+, p: f32) -> bool {
+            pub fn threshold(&self, $($c: impl Coord),+, p: f32) -> bool {
                 self.get_unit($($c),+) < p
             }
         }
@@ -143,7 +143,7 @@ impl<T: Texel, const W: u32, const H: u32> Mask2<T, W, H> {
     /// to the mask (STBN §5.2; FAST §6). `get_k(x, y, 0) == get(x, y)`.
     #[must_use]
     #[inline(always)]
-    pub fn get_k<C: Coord>(&self, x: C, y: C, k: u32) -> T {
+    pub fn get_k(&self, x: impl Coord, y: impl Coord, k: u32) -> T {
         let (ox, oy) = r2_point(k);
         let xi = (x.wrap(W) + scale(ox, W)).wrap(W);
         let yi = (y.wrap(H) + scale(oy, H)).wrap(H);
@@ -153,7 +153,7 @@ impl<T: Texel, const W: u32, const H: u32> Mask2<T, W, H> {
     /// Channel 0 of [`get_k`](Self::get_k) normalised to `[0, 1)`.
     #[must_use]
     #[inline(always)]
-    pub fn get_k_unit<C: Coord>(&self, x: C, y: C, k: u32) -> f32 {
+    pub fn get_k_unit(&self, x: impl Coord, y: impl Coord, k: u32) -> f32 {
         self.get_k(x, y, k).unit(0)
     }
 
@@ -161,7 +161,7 @@ impl<T: Texel, const W: u32, const H: u32> Mask2<T, W, H> {
     /// (as [`Mask3::get_pair_unit`]).
     #[must_use]
     #[inline(always)]
-    pub fn get_pair_unit<C: Coord>(&self, x: C, y: C, k: u32) -> [f32; 2] {
+    pub fn get_pair_unit(&self, x: impl Coord, y: impl Coord, k: u32) -> [f32; 2] {
         let k2 = k.wrapping_mul(2);
         [
             self.get_k_unit(x, y, k2),
@@ -176,7 +176,7 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32> Mask3<T, W, H, D> {
     /// Exact for every `k < 2^32` (see [`sequence`](crate::sequence)).
     #[must_use]
     #[inline(always)]
-    pub fn get_k<C: Coord>(&self, x: C, y: C, t: C, k: u32) -> T {
+    pub fn get_k(&self, x: impl Coord, y: impl Coord, t: impl Coord, k: u32) -> T {
         let (ox, oy) = r2_point(k);
         let xi = (x.wrap(W) + scale(ox, W)).wrap(W);
         let yi = (y.wrap(H) + scale(oy, H)).wrap(H);
@@ -186,7 +186,7 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32> Mask3<T, W, H, D> {
     /// Channel 0 of [`get_k`](Self::get_k) normalised to `[0, 1)`.
     #[must_use]
     #[inline(always)]
-    pub fn get_k_unit<C: Coord>(&self, x: C, y: C, t: C, k: u32) -> f32 {
+    pub fn get_k_unit(&self, x: impl Coord, y: impl Coord, t: impl Coord, k: u32) -> f32 {
         self.get_k(x, y, t, k).unit(0)
     }
 
@@ -195,7 +195,7 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32> Mask3<T, W, H, D> {
     /// [`warp::cosine_hemisphere`](crate::warp::cosine_hemisphere)).
     #[must_use]
     #[inline(always)]
-    pub fn get_pair_unit<C: Coord>(&self, x: C, y: C, t: C, k: u32) -> [f32; 2] {
+    pub fn get_pair_unit(&self, x: impl Coord, y: impl Coord, t: impl Coord, k: u32) -> [f32; 2] {
         let k2 = k.wrapping_mul(2);
         [
             self.get_k_unit(x, y, t, k2),
@@ -208,7 +208,7 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, 
     /// The k-th independent value of a pixel, as [`Mask3::get_k`].
     #[must_use]
     #[inline(always)]
-    pub fn get_k<C: Coord>(&self, x: C, y: C, z: C, w: C, k: u32) -> T {
+    pub fn get_k(&self, x: impl Coord, y: impl Coord, z: impl Coord, w: impl Coord, k: u32) -> T {
         let (ox, oy) = r2_point(k);
         let xi = (x.wrap(W) + scale(ox, W)).wrap(W);
         let yi = (y.wrap(H) + scale(oy, H)).wrap(H);
@@ -218,7 +218,7 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, 
     /// Channel 0 of [`get_k`](Self::get_k) normalised to `[0, 1)`.
     #[must_use]
     #[inline(always)]
-    pub fn get_k_unit<C: Coord>(&self, x: C, y: C, z: C, w: C, k: u32) -> f32 {
+    pub fn get_k_unit(&self, x: impl Coord, y: impl Coord, z: impl Coord, w: impl Coord, k: u32) -> f32 {
         self.get_k(x, y, z, w, k).unit(0)
     }
 
@@ -226,7 +226,7 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, 
     /// (as [`Mask3::get_pair_unit`]).
     #[must_use]
     #[inline(always)]
-    pub fn get_pair_unit<C: Coord>(&self, x: C, y: C, z: C, w: C, k: u32) -> [f32; 2] {
+    pub fn get_pair_unit(&self, x: impl Coord, y: impl Coord, z: impl Coord, w: impl Coord, k: u32) -> [f32; 2] {
         let k2 = k.wrapping_mul(2);
         [
             self.get_k_unit(x, y, z, w, k2),

@@ -186,3 +186,27 @@ fn every_mask_dimension_has_the_same_methods() {
         }
     }
 }
+
+/// Each coordinate takes its own integer type: a game's pixel as `i32` and its frame counter
+/// as `u32` (as `ldg::ign_frame` takes them) need no cast, and read what one type would read.
+#[test]
+fn mask_coordinates_mix_integer_types() {
+    let m3: Mask3<u8, 4, 12, 2> = Mask3::new(&BYTES);
+    let m4: Mask4<u8, 4, 3, 2, 4> = Mask4::new(&BYTES);
+    for frame in 0..7u32 {
+        for y in 0..30usize {
+            for x in -5..9i32 {
+                let (yi, fi) = (y as i32, frame as i32);
+                assert_eq!(m3.get(x, y, frame), m3.get(x, yi, fi));
+                assert_eq!(m3.get_unit(x, y as u16, frame), m3.get_unit(x, yi, fi));
+                assert_eq!(m3.threshold(x, yi, frame, 0.4), m3.threshold(x, yi, fi, 0.4));
+                assert_eq!(m3.get_k_unit(x, yi, frame, 3), m3.get_k_unit(x, yi, fi, 3));
+                assert_eq!(m3.get_pair_unit(x, y, frame, 1), m3.get_pair_unit(x, yi, fi, 1));
+                assert_eq!(
+                    m4.get_k(x, y as u64, frame, -1i64, 2),
+                    m4.get_k(x, yi, fi, -1, 2)
+                );
+            }
+        }
+    }
+}

@@ -70,13 +70,14 @@ pub enum TemporalFilter {
         /// Standard deviation in frames.
         sigma: f64,
     },
-    /// Exponential moving average with history rejection (FAST eq. 14–17): each frame blends
-    /// `α` of the new sample into the history; with probability `β` per frame the history is
-    /// rejected.
+    /// Exponential moving average (FAST eq. 14–17): each frame blends `α` of the new sample
+    /// into the history; with probability `β` per frame the history is rejected (eq. 17).
+    /// `β = 0` is the plain EMA a game's accumulation runs, at its steady state over the
+    /// looping texture.
     Ema {
         /// Blend weight of the new frame, in (0, 1].
         alpha: f64,
-        /// History-rejection probability, in (0, 1].
+        /// History-rejection probability, in [0, 1]; 0 for a plain EMA.
         beta: f64,
     },
 }

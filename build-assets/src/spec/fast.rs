@@ -7,6 +7,9 @@ use crate::fast::{
 };
 use crate::spec::{Format, Scalar, closest};
 
+/// The EMA's blend weight when a spec leaves it out (FAST §7 uses 0.1).
+const DEFAULT_ALPHA: f64 = 0.1;
+
 /// Reads the `fast` keys for a texture of `dims` stored as `format`.
 pub(super) fn parse(
     f: &mut Fields<'_>,
@@ -106,9 +109,12 @@ pub(super) fn parse(
     }
     let frames = dims.get(2).copied().unwrap_or(1);
     let temporal = match f.get("temporal_filter") {
+        // The filter a game's plain accumulation runs: an EMA with α 0.1 and no history
+        // rejection. EA's published texture was made for β 0.1 (eq. 17); that is a choice the
+        // spec states, not a default a game would silently get.
         None if frames > 1 => TemporalFilter::Ema {
-            alpha: 0.1,
-            beta: 0.1,
+            alpha: DEFAULT_ALPHA,
+            beta: 0.0,
         },
         None => TemporalFilter::None,
         Some(v) => {
@@ -218,6 +224,7 @@ pub(super) fn parse(
 type Entries<'a> = &'a [(Spanned<String>, Spanned<Value>)];
 
 /// Reads the `kind` of a filter table and checks that only `allowed` other keys appear.
+
 fn filter_table<'a>(key: &str, v: &'a Spanned<Value>) -> Result<(&'a str, Entries<'a>), SpecError> {
     let Value::Table(t) = &v.value else {
         return Err(type_error(
@@ -374,9 +381,12 @@ fn temporal_filter(v: &Spanned<Value>) -> Result<TemporalFilter, SpecError> {
             let beta = param(K, t, "beta", v.span, &["alpha"])?;
             // α in (0, 1]; β (history rejection) in [0, 1], 0 meaning a plain EMA at its steady
             // state over the looping texture.
+            // Left out, α is 0.1 and β 0 (a plain EMA), as when the whole key is left out.
             let unit =
                 |key: &str, v: Option<Spanned<Value>>, zero: bool| -> Result<f64, SpecError> {
-                    let Some(v) = v else { return Ok(0.1) };
+                    let Some(v) = v else {
+                        return Ok(if zero { 0.0 } else { DEFAULT_ALPHA });
+                    };
                     let x = number(key, &v)?;
                     let ok = if zero {
                         (0.0..=1.0).contains(&x)
