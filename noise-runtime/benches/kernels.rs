@@ -107,25 +107,25 @@ fn main() {
         (
             "perlin3 batch",
             fastest_batch(&pts, &xis, |p, _, o| {
-                Perlin::new(1).sample_batch(p, o);
+                Perlin::new(1).sample_batch(p, o).unwrap();
             }),
         ),
         (
             "perlin3 estimate batch",
             fastest_batch(&pts, &xis, |p, x, o| {
-                Perlin::new(1).estimate_batch(p, x, o);
+                Perlin::new(1).estimate_batch(p, x, o).unwrap();
             }),
         ),
         (
             "fbm3 batch",
             fastest_batch(&pts, &xis, |p, _, o| {
-                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample_batch(p, o);
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample_batch(p, o).unwrap();
             }),
         ),
         (
             "fbm3 estimate batch",
             fastest_batch(&pts, &xis, |p, x, o| {
-                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).estimate_batch(p, x, o);
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).estimate_batch(p, x, o).unwrap();
             }),
         ),
     ] {

@@ -210,19 +210,18 @@ pub fn cos_turns(u: f32) -> f32 {
 /// `√x` in f32, correctly rounded (the IEEE square root), for the hot paths (Worley distances,
 /// kernels); `x ≤ 0` or NaN gives 0, `+∞` gives `+∞`. The lane layer's root: on x86_64 the
 /// processor's `sqrtss`, one instruction where a Newton-refined guess is a chain of thirteen
-/// (it made smooth Voronoi 30 % faster); elsewhere [`sqrt_soft`]. Both round correctly, so
+/// (it made smooth Voronoi 30 % faster); elsewhere the portable backend's Newton-refined root
+/// (`lanes::scalar::sqrt1`, compared bit for bit in the tests below). Both round correctly, so
 /// every target gets the same bits.
 #[inline(always)]
 pub fn sqrt(x: f32) -> f32 {
     crate::lanes::sqrt1(x)
 }
 
-/// [`sqrt`] without a square-root instruction: the same bits on every target, for targets
-/// where `core` offers none (`f32::sqrt` needs `std`). It is the portable lane backend's
-/// root (a Newton-refined guess, then corrected to the rounded root; see there).
-#[inline]
-#[doc(hidden)]
-pub fn sqrt_soft(x: f32) -> f32 {
+/// [`sqrt`] without a square-root instruction, as targets whose `core` offers none compute it
+/// (`f32::sqrt` needs `std`): the portable lane backend's root, for the tests' comparisons.
+#[cfg(test)]
+fn sqrt_soft(x: f32) -> f32 {
     crate::lanes::scalar::sqrt1(x)
 }
 
@@ -275,8 +274,7 @@ pub fn sqrt_f64(x: f64) -> f64 {
 /// instead of a float-to-integer conversion, whose saturating semantics add two compares and
 /// two conditional moves per axis.
 #[inline(always)]
-#[doc(hidden)]
-pub fn split_in_range(x: f32) -> (i32, f32) {
+pub(crate) fn split_in_range(x: f32) -> (i32, f32) {
     // Written once, in the portable lane backend, whose lanes run it.
     let (c, f) = crate::lanes::scalar::split1(x);
     (c as i32, f)
@@ -326,8 +324,7 @@ pub(crate) fn split_lanes(v: F4) -> (I4, F4) {
 /// Whether every coordinate is finite and below 2^22 in magnitude (then [`split_in_range`]
 /// applies; larger coordinates take [`split`]).
 #[inline(always)]
-#[doc(hidden)]
-pub fn in_split_range<const N: usize>(p: [f32; N]) -> bool {
+pub(crate) fn in_split_range<const N: usize>(p: [f32; N]) -> bool {
     // `|v| < 2^22` is `abs_bits < 0x4a80_0000` (NaN and infinity are above), which is the sign
     // bit of `abs_bits + (2^31 − 0x4a80_0000)` being clear: one add per coordinate, their OR,
     // and a single test, where compares chained by `&&` were a branch each.

@@ -140,14 +140,16 @@ fn noise(c: &mut Criterion) {
         };
     }
     batch!("perlin3/deterministic-batch", |p, _x, o| Perlin::new(1)
-        .sample_batch(p, o));
+        .sample_batch(p, o)
+        .unwrap());
     batch!("perlin3/stochastic-batch", |p, x, o| {
-        Perlin::new(1).estimate_batch(p, x, o)
+        Perlin::new(1).estimate_batch(p, x, o).unwrap()
     });
     batch!("fbm3/deterministic-batch", |p, _x, o| Fbm::new(f10, 1)
-        .sample_batch(p, o));
+        .sample_batch(p, o)
+        .unwrap());
     batch!("fbm3/stochastic-batch", |p, x, o| {
-        Fbm::new(f10, 1).estimate_batch(p, x, o)
+        Fbm::new(f10, 1).estimate_batch(p, x, o).unwrap()
     });
     {
         use noise_functions::{CellDistance, Noise, Perlin};

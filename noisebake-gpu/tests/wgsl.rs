@@ -8,7 +8,7 @@
 
 use noisebake::cnj::Cnj2;
 use noisebake::stochastic::{self, Fractal};
-use noisebake::{Mask3, ldg, sequence};
+use noisebake::{Mask3, hash, ldg, sequence};
 use noisebake_gpu::{Binding, Gpu, bytes_of, floats, validate, words};
 use std::sync::OnceLock;
 
@@ -202,9 +202,9 @@ fn integer_functions_match_bit_for_bit() {
             ldg::bayer::<8>(x, y).to_bits(),
             ldg::bayer::<2048>(x, y).to_bits(),
             ldg::bayer_frame::<16>(x, y, f).to_bits(),
-            stochastic::hash2(x, y, k),
-            stochastic::hash3(x, y, z, k),
-            stochastic::pcg(x as u32),
+            hash::hash2(x, y, k),
+            hash::hash3(x, y, z, k),
+            hash::pcg(x as u32),
             sequence::r2_point(k).0,
             sequence::r2_point(k).1,
             sequence::golden(f),

@@ -20,6 +20,6 @@ pub fn use_everything(x: i32, y: i32, frame: u32) -> f32 {
         + SmoothVoronoi::new(2).sample([g, m, s]);
     // The batch forms (AVX2 detection without std).
     let mut out = [0.0f32; 9];
-    Perlin::new(1).estimate_batch(&[[g, m, s]; 9], &[frac(m); 9], &mut out);
+    let _ = Perlin::new(1).estimate_batch(&[[g, m, s]; 9], &[frac(m); 9], &mut out);
     m + g + d[2] + s + st + out[8] + noisebake::math::sqrt(2.0)
 }

@@ -322,7 +322,7 @@ impl App for Occlusion {
                 let mut v = 0.0;
                 for s in 0..1024u32 {
                     let (a, b) = ((s % 32) as f32, (s / 32) as f32);
-                    let j = noisebake::stochastic::hash2(i as i32, s as i32, 5);
+                    let j = noisebake::hash::hash2(i as i32, s as i32, 5);
                     let u = (a + (j >> 16) as f32 / 65536.0) / 32.0;
                     let vv = (b + (j & 0xffff) as f32 / 65536.0) / 32.0;
                     let d = Self::to_world(n, noisebake::warp::cosine_hemisphere(u, vv));

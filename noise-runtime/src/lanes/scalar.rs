@@ -5,8 +5,8 @@
 //! without SSE2 and, with the `portable` feature, on x86_64 too; the tests below compare it
 //! with the SSE2 backend operation by operation, where both exist.
 //!
-//! Always compiled, because the scalar square root [`sqrt1`] here is also
-//! [`math::sqrt_soft`](crate::math::sqrt_soft), the root for targets whose `core` has none.
+//! Always compiled, because the scalar square root [`sqrt1`] here is the root for targets whose
+//! `core` has none.
 
 // On x86_64 with SSE2 only the square root and the eight-lane operations are used outside the
 // tests; the four-lane types stand by as the tests' reference.

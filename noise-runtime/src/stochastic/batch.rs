@@ -10,21 +10,24 @@
 //! hashing, and a table read of eight gradients is three instructions), so the estimator's lead
 //! over the deterministic form grows only a little.
 //!
-//! Each function evaluates the first `min` of its slices' lengths and returns that count; it
-//! never panics on mismatched lengths and leaves the rest of `out` untouched.
+//! The noise types' batch verbs check that their slices agree in length
+//! ([`BatchLengths`](super::BatchLengths)); the functions here evaluate the first `min` of the
+//! lengths and return that count.
 //!
 //! ```
-//! use noise_runtime::stochastic::{Fractal, fbm3, fbm3_batch, fbm3_stochastic_batch};
+//! use noise_runtime::stochastic::{Fbm, Fractal};
 //!
 //! let points: Vec<[f32; 3]> = (0..100).map(|i| [i as f32 * 0.37, 1.5, -2.25]).collect();
 //! let mut out = vec![0.0; points.len()];
-//! let f = Fractal::default();
-//! assert_eq!(fbm3_batch(&points, f, 7, &mut out), 100);
-//! assert_eq!(out[42].to_bits(), fbm3(points[42], f, 7).to_bits());
+//! let fbm = Fbm::new(Fractal::default(), 7);
+//! fbm.sample_batch(&points, &mut out).unwrap();
+//! assert_eq!(out[42].to_bits(), fbm.sample(points[42]).to_bits());
 //! // One ξ per point, e.g. from a blue-noise mask's pixels.
 //! let xi: Vec<f32> = (0..100).map(|i| (i as f32 + 0.5) / 100.0).collect();
-//! fbm3_stochastic_batch(&points, f, 7, &xi, &mut out);
+//! fbm.estimate_batch(&points, &xi, &mut out).unwrap();
 //! assert!(out.iter().all(|v| v.is_finite()));
+//! // A ξ short is an error, not a silently shorter run.
+//! assert!(fbm.estimate_batch(&points, &xi[..99], &mut out).is_err());
 //! ```
 
 use super::fractal::{Fractal, fbm3, fbm3_stochastic};

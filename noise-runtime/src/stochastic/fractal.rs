@@ -75,7 +75,7 @@ pub fn fractal(p: [f32; 3], f: Fractal, mut noise: impl FnMut([f32; 3], u32) -> 
 /// `|gain^o| / Σ|gain^i|`, and `noise(p · lacunarity^o, o, ξ')` is scaled by the sum; `ξ'` is ξ
 /// remapped within the chosen octave's interval, so the noise can be stochastic too.
 #[inline(always)]
-pub fn fractal_stochastic(
+pub fn fractal_estimate(
     p: [f32; 3],
     f: Fractal,
     xi: f32,
@@ -86,15 +86,15 @@ pub fn fractal_stochastic(
 }
 
 /// [`fractal`] with its first `exact` octaves (the largest, which carry most of the weight)
-/// summed exactly by `noise` and one octave of the rest sampled by [`fractal_stochastic`] with
+/// summed exactly by `noise` and one octave of the rest sampled by [`fractal_estimate`] with
 /// `noise_estimate`. Unbiased like the full estimator, but the sampled part has weight
 /// `Σ_(o ≥ exact) |gain^o|`, so its variance shrinks by `gain^(2·exact)` (1/16 for two exact
 /// octaves at gain ½) while the cost is `exact` noise evaluations plus one estimate — the
 /// variance reduction that makes one-sample fBm pay inside a Monte Carlo renderer
-/// (`cargo run --release --example cloud`). `exact = 0` is [`fractal_stochastic`];
+/// (`cargo run --release --example cloud`). `exact = 0` is [`fractal_estimate`];
 /// `exact ≥ octaves` is [`fractal`].
 #[inline(always)]
-pub fn fractal_tail_stochastic(
+pub fn fractal_tail_estimate(
     p: [f32; 3],
     f: Fractal,
     exact: u32,
@@ -115,7 +115,7 @@ pub fn fractal_tail_stochastic(
     }
     let q = [p[0] * freq, p[1] * freq, p[2] * freq];
     let tail = Fractal::new(n - exact, lac, gain);
-    sum + amp * fractal_stochastic(q, tail, xi, |q, o, x| noise_estimate(q, o + exact, x))
+    sum + amp * fractal_estimate(q, tail, xi, |q, o, x| noise_estimate(q, o + exact, x))
 }
 
 /// The octave Algorithm 2 picks for one ξ, with what the estimator needs of it.
@@ -239,7 +239,7 @@ impl OctavePick {
 }
 
 /// The seed of octave `o` in [`Fbm`](super::Fbm) and the other fractal sums: each octave is an independent
-/// noise. For building a sum with [`fractal`] or [`fractal_tail_stochastic`] that matches them.
+/// noise. For building a sum with [`fractal`] or [`fractal_tail_estimate`] that matches them.
 #[inline(always)]
 pub fn octave_seed(seed: u32, o: u32) -> u32 {
     seed.wrapping_add(o.wrapping_mul(0x9e37_79b9))
@@ -287,10 +287,10 @@ pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
 }
 
 /// [`fbm3`] with its first `exact` octaves exact and one octave of the rest sampled
-/// ([`fractal_tail_stochastic`]): `exact` Perlin evaluations and one gradient.
+/// ([`fractal_tail_estimate`]): `exact` Perlin evaluations and one gradient.
 #[inline]
 pub fn fbm3_tail_stochastic(p: [f32; 3], f: Fractal, exact: u32, seed: u32, xi: f32) -> f32 {
-    fractal_tail_stochastic(
+    fractal_tail_estimate(
         p,
         f,
         exact,
@@ -308,7 +308,7 @@ pub fn fbm3_tail_stochastic(p: [f32; 3], f: Fractal, exact: u32, seed: u32, xi: 
 #[inline]
 pub fn fbm3_octave_stochastic(p: [f32; 3], f: Fractal, exact: u32, seed: u32, xi: f32) -> f32 {
     let perlin = |q: [f32; 3], o: u32| super::perlin::perlin3(q, octave_seed(seed, o));
-    fractal_tail_stochastic(p, f, exact, xi, perlin, |q, o, _| perlin(q, o))
+    fractal_tail_estimate(p, f, exact, xi, perlin, |q, o, _| perlin(q, o))
 }
 
 /// [`fbm3_stochastic`] for lacunarity 2, gain ±½ and a point whose finest octave
@@ -367,7 +367,7 @@ mod tests {
                 let check = |p: [f32; 3], xi: f32| {
                     let seed = p[0].to_bits() ^ n;
                     let got = fbm3_stochastic(p, f, seed, xi);
-                    let want = fractal_stochastic(p, f, xi, |q, o, x| {
+                    let want = fractal_estimate(p, f, xi, |q, o, x| {
                         perlin3_stochastic(q, octave_seed(seed, o), x)
                     });
                     assert_eq!(
@@ -494,7 +494,7 @@ mod tests {
             let mut xi_sum = [0.0f64; 32];
             for i in 0..steps {
                 let xi = (i as f32 + 0.5) / steps as f32;
-                let v = fractal_stochastic([1.0; 3], f, xi, |q, o, x| {
+                let v = fractal_estimate([1.0; 3], f, xi, |q, o, x| {
                     assert!((0.0..1.0).contains(&x), "ξ' = {x}");
                     assert_eq!(q[0], 2.0f32.powi(o as i32), "frequency of octave {o}");
                     count[o as usize] += 1;
@@ -527,7 +527,7 @@ mod tests {
         let f = Fractal::new(3, 2.0, -0.7);
         let total = 1.0 + 0.7 + 0.49f32;
         let xi = 1.2 / total; // inside octave 1's interval [1, 1.7) / total
-        assert!(fractal_stochastic([0.0; 3], f, xi, |_, o, _| o as f32) < 0.0);
-        assert!(fractal_stochastic([0.0; 3], f, 0.1, |_, _, _| 1.0) > 0.0);
+        assert!(fractal_estimate([0.0; 3], f, xi, |_, o, _| o as f32) < 0.0);
+        assert!(fractal_estimate([0.0; 3], f, 0.1, |_, _, _| 1.0) > 0.0);
     }
 }

@@ -4,8 +4,9 @@
 //! `e^(−π a² r²) cos(2π F₀ ω·(p − p_i))`, truncated at `r = 1` (the cell size). The estimator
 //! samples one impulse per cell with probability `(2i + 1)/n_c²`.
 //!
-//! [`GaborNoise`](super::GaborNoise) is the form to keep in a renderer: the parameters prepared once. The free
-//! functions [`gabor3`] and [`gabor3_stochastic`] prepare them on every call.
+//! [`GaborNoise`](super::GaborNoise) is the form to keep in a renderer: the parameters prepared
+//! once. The tests keep the plain statement (`gabor3`, `gabor3_stochastic`: a CDF built on every
+//! call) as the tables' reference.
 
 use super::estimators::sanitize_xi;
 use super::sparse::{Reach, flip, importance_index, impulse, rotate, unit_bits};
@@ -211,7 +212,7 @@ impl PoissonGuide {
 }
 
 /// Gabor parameters sanitised and their Poisson tables built: what
-/// [`GaborNoise`](super::GaborNoise) keeps. [`gabor3`] and [`gabor3_stochastic`] build a CDF on
+/// [`GaborNoise`](super::GaborNoise) keeps. The tests' `gabor3` and `gabor3_stochastic` build a CDF on
 /// every call (63 running sums, a chain of dependent multiplies and adds) and search it for
 /// each cell's count; the tables find a count in one read. Same values, bit for bit.
 #[derive(Clone, Debug)]
@@ -231,13 +232,14 @@ impl GaborTables {
         }
     }
 
-    /// 3D Gabor noise (see [`gabor3`]).
+    /// 3D Gabor noise: `Σ_c Σ_i ±(i + ½)/n_c · K_i(p)`.
     #[inline]
     pub fn sample(&self, p: [f32; 3], seed: u32) -> f32 {
         sum(p, seed, self.f0, |h| self.guide.count(h))
     }
 
-    /// One-sample estimator of [`GaborTables::sample`] (see [`gabor3_stochastic`]).
+    /// One-sample estimator of [`GaborTables::sample`]: one importance-sampled impulse per
+    /// cell, weighted by `n_c / 2`.
     #[inline]
     pub fn sample_stochastic(&self, p: [f32; 3], seed: u32, xi: f32) -> f32 {
         let guide = &self.guide;
@@ -258,19 +260,17 @@ impl From<Gabor> for GaborTables {
     }
 }
 
-/// 3D Gabor noise: `Σ_c Σ_i ±(i + ½)/n_c · K_i(p)`. To evaluate the same parameters many
-/// times, build a [`GaborNoise`](super::GaborNoise) once.
-#[inline]
-pub fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
+/// 3D Gabor noise with its CDF built on every call: the tests' reference for the tables.
+#[cfg(test)]
+fn gabor3(p: [f32; 3], g: Gabor, seed: u32) -> f32 {
     let (lambda, f0) = g.sane();
     let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
     sum(p, seed, f0, |h| count(h, &cdf))
 }
 
-/// One-sample estimator of [`gabor3`]: one importance-sampled impulse per cell, weighted by
-/// `n_c / 2`.
-#[inline]
-pub fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
+/// One-sample estimator of `gabor3`, likewise the tests' reference.
+#[cfg(test)]
+fn gabor3_stochastic(p: [f32; 3], g: Gabor, seed: u32, xi: f32) -> f32 {
     let (lambda, f0) = g.sane();
     let cdf = PoissonCdf::new(lambda, exp_neg(-lambda));
     let count = |h| count(h, &cdf);

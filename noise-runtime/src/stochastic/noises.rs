@@ -27,6 +27,42 @@ mod sealed {
     impl Sealed for [f32; 4] {}
 }
 
+
+/// The error of a batch call whose slices differ in length: one output per point (and one ξ
+/// per point for an estimator) is the contract, and a silent shortest-slice run would hide a
+/// caller's off-by-one. Nothing is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BatchLengths {
+    /// `points.len()`.
+    pub points: usize,
+    /// `xi.len()`, for estimators.
+    pub xi: Option<usize>,
+    /// `out.len()`.
+    pub out: usize,
+}
+
+impl BatchLengths {
+    fn check(points: usize, xi: Option<usize>, out: usize) -> Result<(), Self> {
+        if out == points && xi.is_none_or(|x| x == points) {
+            Ok(())
+        } else {
+            Err(Self { points, xi, out })
+        }
+    }
+}
+
+impl core::fmt::Display for BatchLengths {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "batch slices differ in length: {} points", self.points)?;
+        if let Some(xi) = self.xi {
+            write!(f, ", {xi} ξ")?;
+        }
+        write!(f, ", {} outputs; give one of each per point", self.out)
+    }
+}
+
+impl core::error::Error for BatchLengths {}
+
 /// A point lattice noises are defined at: `[f32; 2]`, `[f32; 3]` or `[f32; 4]`. Sealed: the
 /// dispatch to each dimension's kernel is an implementation detail.
 pub trait LatticePoint: sealed::Sealed + Copy {
@@ -147,17 +183,27 @@ impl Perlin {
     }
 
     /// [`sample`](Self::sample) of many 3D points into `out` (eight per AVX2 instruction where
-    /// the CPU has it); returns how many were written, `min(points.len(), out.len())`.
+    /// the CPU has it), bit for bit the single-point values. Slices of different lengths are
+    /// an error, and nothing is written.
     #[inline]
-    pub fn sample_batch(self, points: &[[f32; 3]], out: &mut [f32]) -> usize {
-        batch::perlin3_batch(points, self.seed, out)
+    pub fn sample_batch(self, points: &[[f32; 3]], out: &mut [f32]) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), None, out.len())?;
+        batch::perlin3_batch(points, self.seed, out);
+        Ok(())
     }
 
-    /// [`estimate`](Self::estimate) of many 3D points, one ξ each, into `out`; returns how many
-    /// were written.
+    /// [`estimate`](Self::estimate) of many 3D points, one ξ each, into `out`. Slices of
+    /// different lengths are an error, and nothing is written.
     #[inline]
-    pub fn estimate_batch(self, points: &[[f32; 3]], xi: &[f32], out: &mut [f32]) -> usize {
-        batch::perlin3_stochastic_batch(points, self.seed, xi, out)
+    pub fn estimate_batch(
+        self,
+        points: &[[f32; 3]],
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
+        batch::perlin3_stochastic_batch(points, self.seed, xi, out);
+        Ok(())
     }
 }
 
@@ -230,7 +276,7 @@ impl Fbm {
     }
 
     /// The first `exact` octaves summed exactly and one gradient of one octave of the rest:
-    /// the tail's variance shrinks by `gain^(2·exact)` ([`fractal_tail_stochastic`](super::fractal_tail_stochastic)).
+    /// the tail's variance shrinks by `gain^(2·exact)` ([`fractal_tail_estimate`](super::fractal_tail_estimate)).
     #[must_use]
     #[inline]
     pub fn estimate_tail(self, p: [f32; 3], exact: u32, xi: f32) -> f32 {
@@ -245,16 +291,25 @@ impl Fbm {
         fractal::fbm3_octave_stochastic(p, self.fractal, exact, self.seed, xi)
     }
 
-    /// [`sample`](Self::sample) of many points into `out`; returns how many were written.
+    /// [`sample`](Self::sample) of many points into `out`, as [`Perlin::sample_batch`].
     #[inline]
-    pub fn sample_batch(self, points: &[[f32; 3]], out: &mut [f32]) -> usize {
-        batch::fbm3_batch(points, self.fractal, self.seed, out)
+    pub fn sample_batch(self, points: &[[f32; 3]], out: &mut [f32]) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), None, out.len())?;
+        batch::fbm3_batch(points, self.fractal, self.seed, out);
+        Ok(())
     }
 
-    /// [`estimate`](Self::estimate) of many points, one ξ each; returns how many were written.
+    /// [`estimate`](Self::estimate) of many points, one ξ each, as [`Perlin::estimate_batch`].
     #[inline]
-    pub fn estimate_batch(self, points: &[[f32; 3]], xi: &[f32], out: &mut [f32]) -> usize {
-        batch::fbm3_stochastic_batch(points, self.fractal, self.seed, xi, out)
+    pub fn estimate_batch(
+        self,
+        points: &[[f32; 3]],
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
+        batch::fbm3_stochastic_batch(points, self.fractal, self.seed, xi, out);
+        Ok(())
     }
 }
 
@@ -361,7 +416,7 @@ impl SparseConvolutionFbm {
         let octave = |q: [f32; 3], o: u32| {
             sparse::sparse_conv3(q, self.impulses, fractal::octave_seed(self.seed, o))
         };
-        fractal::fractal_tail_stochastic(p, self.fractal, exact, xi, octave, |q, o, _| octave(q, o))
+        fractal::fractal_tail_estimate(p, self.fractal, exact, xi, octave, |q, o, _| octave(q, o))
     }
 }
 

@@ -235,7 +235,7 @@ pub fn simplex4_grad(p: [f32; 4], seed: u32) -> (f32, [f32; 4]) {
 /// One-sample estimator of [`simplex4`]: one gradient of five, chosen with probability ∝ its
 /// weight. On a CPU it takes about as long as [`simplex4`] (`noisebake report`: 1.0×): the
 /// four gradients it skips are cheap next to the weights it must compute. For fractal sums,
-/// choose the octave stochastically ([`fractal_stochastic`](super::fractal_stochastic)).
+/// choose the octave stochastically ([`fractal_estimate`](super::fractal_estimate)).
 #[inline(always)]
 pub fn simplex4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     lanes::simplex4_stochastic(p, seed, xi)

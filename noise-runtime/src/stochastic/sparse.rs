@@ -5,7 +5,7 @@
 //! (probability `(2i + 1)/n²`), giving eq. (8): `½ Σ_c ±k(|p − p_(i,c)|)`.
 
 use super::estimators::sanitize_xi;
-use super::fractal::{Fractal, fractal, fractal_stochastic, fractal_tail_stochastic, octave_seed};
+use super::fractal::{Fractal, fractal, fractal_estimate, fractal_tail_estimate, octave_seed};
 use crate::hash::{PRIME, corner};
 use crate::math::{in_split_range, split, split_in_range};
 
@@ -262,13 +262,13 @@ pub fn fbm_sparse_conv3(p: [f32; 3], f: Fractal, n: u32, seed: u32) -> f32 {
 /// impulse per cell (eq. 8).
 #[inline]
 pub fn fbm_sparse_conv3_stochastic(p: [f32; 3], f: Fractal, n: u32, seed: u32, xi: f32) -> f32 {
-    fractal_stochastic(p, f, xi, |q, o, x| {
+    fractal_estimate(p, f, xi, |q, o, x| {
         sparse_conv3_stochastic(q, n, octave_seed(seed, o), x)
     })
 }
 
 /// [`fbm_sparse_conv3`] with its first `exact` octaves exact and one octave of the rest sampled,
-/// one impulse per cell ([`fractal_tail_stochastic`]).
+/// one impulse per cell ([`fractal_tail_estimate`]).
 #[inline]
 pub fn fbm_sparse_conv3_tail_stochastic(
     p: [f32; 3],
@@ -278,7 +278,7 @@ pub fn fbm_sparse_conv3_tail_stochastic(
     seed: u32,
     xi: f32,
 ) -> f32 {
-    fractal_tail_stochastic(
+    fractal_tail_estimate(
         p,
         f,
         exact,
@@ -334,7 +334,7 @@ pub fn sparse_conv3_stochastic1(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 
 /// One-term estimator of [`fbm_sparse_conv3`]: one octave, one cell, one impulse.
 #[inline]
 pub fn fbm_sparse_conv3_stochastic1(p: [f32; 3], f: Fractal, n: u32, seed: u32, xi: f32) -> f32 {
-    fractal_stochastic(p, f, xi, |q, o, x| {
+    fractal_estimate(p, f, xi, |q, o, x| {
         sparse_conv3_stochastic1(q, n, octave_seed(seed, o), x)
     })
 }

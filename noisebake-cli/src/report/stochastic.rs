@@ -588,20 +588,20 @@ fn batch_rows(
             "perlin3",
             |p, _| Perlin::new(1).sample(p),
             |p, _, o| {
-                Perlin::new(1).sample_batch(p, o);
+                Perlin::new(1).sample_batch(p, o).unwrap();
             },
             |p, x, o| {
-                Perlin::new(1).estimate_batch(p, x, o);
+                Perlin::new(1).estimate_batch(p, x, o).unwrap();
             },
         ),
         (
             "fbm3",
             |p, _| Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample(p),
             |p, _, o| {
-                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample_batch(p, o);
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample_batch(p, o).unwrap();
             },
             |p, x, o| {
-                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).estimate_batch(p, x, o);
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).estimate_batch(p, x, o).unwrap();
             },
         ),
     ];
