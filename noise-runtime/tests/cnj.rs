@@ -34,11 +34,7 @@ fn max_displacement_2d_is_within_the_two_ring_guarantee() {
 #[test]
 fn closest_and_k_nearest_2d_match_brute_force() {
     for seed in [0u32, 7] {
-        let c = Cnj2 {
-            seed,
-            spacing: 0.5,
-            ..Cnj2::default()
-        };
+        let c = Cnj2::default().with_seed(seed).with_spacing(0.5).unwrap();
         let mut pts = Vec::new();
         for j in -40..40 {
             for i in -40..40 {
@@ -65,10 +61,7 @@ fn closest_and_k_nearest_2d_match_brute_force() {
 
 #[test]
 fn region_queries_equal_direct_queries() {
-    let c = Cnj2 {
-        spacing: 3.0,
-        ..Cnj2::default()
-    };
+    let c = Cnj2::default().with_spacing(3.0).unwrap();
     let (_, dims) = c.region_dims([0.0, 0.0], [64.0, 48.0]);
     let mut buf = vec![[0.0f32; 2]; dims[0] * dims[1]];
     let r = c.region([0.0, 0.0], [64.0, 48.0], &mut buf).unwrap();
@@ -137,11 +130,9 @@ fn displacement_3d_stays_below_its_bound_and_queries_are_exact() {
         (Lattice3::Cubic, Potential3::Gradient),
         (Lattice3::Bcc, Potential3::SumOfSines),
     ] {
-        let c = Cnj3 {
-            lattice,
-            potential,
-            ..Cnj3::default()
-        };
+        let c = Cnj3::default()
+            .with_lattice(lattice)
+            .with_potential(potential);
         let bound = c.max_displacement() as f32;
         let mut max: f32 = 0.0;
         for k in -12..12 {
@@ -203,27 +194,22 @@ fn huge_and_odd_inputs_never_give_nan() {
         let n3 = c3.closest([v, 0.25, -v]);
         assert!(n3.distance.is_finite(), "{v}");
     }
-    for bad in [
-        Cnj2 {
-            s: 0.0,
-            ..Cnj2::default()
-        },
-        Cnj2 {
-            s: f32::NAN,
-            t: f32::INFINITY,
-            spacing: -1.0,
-            steps: 0,
-            ..Cnj2::default()
-        },
-        Cnj2 {
-            integrator: Integrator::Euler,
-            steps: 1000,
-            ..Cnj2::default()
-        },
+    // Parameters no lattice can have are errors naming the parameter and the value, where a
+    // spacing of 0 or -1 once acted silently as 1.
+    let d = Cnj2::default();
+    for (bad, what) in [
+        (d.with_scale(0.0), "cell size"),
+        (d.with_scale(f32::NAN), "cell size"),
+        (d.with_time(f32::INFINITY), "time"),
+        (d.with_spacing(-1.0), "spacing must be finite and positive, got -1"),
+        (d.with_spacing(0.0), "spacing must be finite and positive, got 0"),
+        (d.with_integrator(Integrator::Euler).with_steps(1000), "steps"),
     ] {
-        let n = bad.closest([3.3, -7.1]);
-        assert!(n.distance.is_finite(), "{bad:?}");
+        let e = bad.unwrap_err().to_string();
+        assert!(e.contains(what), "{e}");
     }
+    let euler = d.with_integrator(Integrator::Euler).with_steps(64).unwrap();
+    assert!(euler.closest([3.3, -7.1]).distance.is_finite());
     // Sites far from the origin are exact: the displacement depends only on the site.
     let far = c.displacement([2_000_000_000, -2_000_000_001]);
     assert!(far.iter().all(|x| x.is_finite() && x.abs() < 1.2));

@@ -144,41 +144,33 @@ fn batch_forms_match_single_points_on_extremes() {
 
 #[test]
 fn cnj_queries_are_total_and_bounded() {
+    // The extremes a lattice can have; values none can have are refused by the setters.
+    let c2 = Cnj2::default();
     let lattices = [
-        Cnj2::default(),
-        Cnj2 {
-            t: 0.0,
-            ..Cnj2::default()
-        },
-        Cnj2 {
-            t: f32::MAX,
-            ..Cnj2::default()
-        },
-        Cnj2 {
-            t: f32::NAN,
-            ..Cnj2::default()
-        },
-        Cnj2 {
-            s: 1e-30,
-            ..Cnj2::default()
-        },
-        Cnj2 {
-            s: f32::INFINITY,
-            ..Cnj2::default()
-        },
-        Cnj2 {
-            spacing: 1e-30,
-            ..Cnj2::default()
-        },
-        Cnj2 {
-            spacing: -1.0,
-            ..Cnj2::default()
-        },
-        Cnj2 {
-            steps: u32::MAX,
-            ..Cnj2::default()
-        },
+        c2,
+        c2.with_time(0.0).unwrap(),
+        c2.with_time(f32::MAX).unwrap(),
+        c2.with_time(-f32::MAX).unwrap(),
+        c2.with_scale(noise_runtime::cnj::MIN_SCALE as f32 * 1.01).unwrap(),
+        c2.with_scale(f32::MAX).unwrap(),
+        c2.with_spacing(1e-30).unwrap(),
+        c2.with_spacing(f32::MAX).unwrap(),
+        c2.with_steps(64).unwrap(),
     ];
+    for bad in [
+        c2.with_spacing(0.0),
+        c2.with_spacing(-1.0),
+        c2.with_spacing(f32::NAN),
+        c2.with_spacing(f32::INFINITY),
+        c2.with_time(f32::NAN),
+        c2.with_scale(1e-30),
+        c2.with_scale(f32::INFINITY),
+        c2.with_steps(0),
+        c2.with_steps(u32::MAX),
+    ] {
+        let e = bad.unwrap_err();
+        assert!(e.to_string().starts_with("CNJ "), "{e}");
+    }
     for c in lattices {
         for &x in &F {
             for &y in &F[..8] {
@@ -213,33 +205,16 @@ fn cnj_queries_are_total_and_bounded() {
             assert!(w >= 1 && h >= 1 && w * h <= noise_runtime::cnj::MAX_REGION_SITES);
         }
     }
+    let c3 = Cnj3::default();
     let lattices3 = [
-        Cnj3::default(),
-        Cnj3 {
-            t: 30.0,
-            ..Cnj3::default()
-        },
-        Cnj3 {
-            t: f32::MAX,
-            ..Cnj3::default()
-        },
-        Cnj3 {
-            t: f32::NAN,
-            ..Cnj3::default()
-        },
-        Cnj3 {
-            s: 1e-30,
-            ..Cnj3::default()
-        },
-        Cnj3 {
-            spacing: 0.0,
-            ..Cnj3::default()
-        },
-        Cnj3 {
-            steps: u32::MAX,
-            ..Cnj3::default()
-        },
+        c3,
+        c3.with_time(30.0).unwrap(),
+        c3.with_time(f32::MAX).unwrap(),
+        c3.with_scale(noise_runtime::cnj::MIN_SCALE as f32 * 1.01).unwrap(),
+        c3.with_spacing(1e-30).unwrap(),
+        c3.with_steps(64).unwrap(),
     ];
+    assert!(c3.with_spacing(0.0).is_err() && c3.with_time(f32::NAN).is_err());
     for c in lattices3 {
         for p in points3().step_by(7) {
             let n = c.closest(p);

@@ -93,10 +93,7 @@ fn cnj(c: &mut Criterion) {
         });
     }
     // A 1920×1080 frame: cache the sites once (rows in parallel), then F1 per pixel on 2 threads.
-    let c = Cnj2 {
-        spacing: 12.0,
-        ..Cnj2::default()
-    };
+    let c = Cnj2::default().with_spacing(12.0).unwrap();
     let (origin, dims) = c.region_dims([0.0, 0.0], [1920.0, 1080.0]);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)

@@ -81,17 +81,14 @@ pub fn generate(method: Method, n: usize, seed: u64) -> Vec<[f64; 2]> {
     match method {
         Method::Lattice => lattice_points(n, seed, |_| [0.0, 0.0]),
         Method::Cnj => {
-            let c = Cnj2 {
-                seed: seed as u32,
-                ..Cnj2::default()
-            };
+            let c = Cnj2::default().with_seed(seed as u32);
             lattice_points(n, seed, |s| {
                 let d = c.displacement(s);
                 [d[0] as f64, d[1] as f64]
             })
         }
         Method::CnjIterative => {
-            let (t0, s) = (Cnj2::PAPER.t as f64, Cnj2::PAPER.s as f64);
+            let (t0, s) = (Cnj2::PAPER.time() as f64, Cnj2::PAPER.scale() as f64);
             lattice_points(n, seed, |site| {
                 let p0 = Cnj2::site_position(site);
                 let mut p = p0;

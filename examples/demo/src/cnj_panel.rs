@@ -38,10 +38,9 @@ fn gray(path: &Path, img: &[f32], size: usize) -> Result<(), String> {
 /// Renders the panel into `dir` (`size`² images); returns the table rows.
 pub fn run(dir: &Path, size: usize) -> Result<Vec<Row>, String> {
     let mut rows = Vec::new();
-    let c = Cnj2 {
-        spacing: size as f32 / 24.0,
-        ..Cnj2::default()
-    };
+    let c = Cnj2::default()
+        .with_spacing(size as f32 / 24.0)
+        .map_err(|e| e.to_string())?;
     let max = [size as f32, size as f32];
     let start = Instant::now();
     let (origin, dims) = c.region_dims([0.0, 0.0], max);
@@ -61,7 +60,7 @@ pub fn run(dir: &Path, size: usize) -> Result<Vec<Row>, String> {
         seconds: start.elapsed().as_secs_f64(),
         quality: None,
     });
-    let sp = c.spacing;
+    let sp = c.spacing();
     let f1: Vec<f32> = cells.iter().map(|k| k.f1() / sp).collect();
     let border: Vec<f32> = cells
         .iter()

@@ -14,20 +14,36 @@ pub const MAX_REGION_SITES: usize = 1 << 22;
 
 /// Curl-noise jittering of the 2D triangular lattice.
 #[derive(Clone, Copy, Debug, PartialEq)]
+///
+/// Built from [`Cnj2::PAPER`] (also [`Default`]) with the checked setters of
+/// [`Cnj2::with_spacing`], [`Cnj2::with_time`], [`Cnj2::with_scale`], [`Cnj2::with_steps`]; a value no lattice can
+/// have (a spacing of 0 or −1, a NaN time) is an error there, never a silent substitute.
+///
+/// ```
+/// use noise_runtime::cnj::Cnj2;
+///
+/// let cnj = Cnj2::PAPER.with_spacing(12.0)?.with_seed(7);
+/// assert_eq!(cnj.spacing(), 12.0);
+/// assert!(Cnj2::PAPER.with_spacing(0.0).is_err());
+/// assert!(Cnj2::PAPER.with_spacing(-1.0).is_err());
+/// # Ok::<(), noise_runtime::cnj::CnjError>(())
+/// ```
 pub struct Cnj2 {
     /// Streamline time (the paper's `t`).
-    pub t: f32,
+    t: f32,
     /// Noise cell size in lattice spacings (the paper's `s`).
-    pub s: f32,
+    s: f32,
     /// Seed of the noise.
-    pub seed: u32,
+    seed: u32,
     /// Distance between neighbouring lattice points, in world units.
-    pub spacing: f32,
+    spacing: f32,
     /// Integration steps over `[0, t]`.
-    pub steps: u32,
+    steps: u32,
     /// RK4 (default) or Euler.
-    pub integrator: Integrator,
+    integrator: Integrator,
 }
+
+super::parameters!(Cnj2, "lattice spacings", "neighbouring lattice points");
 
 impl Default for Cnj2 {
     fn default() -> Self {

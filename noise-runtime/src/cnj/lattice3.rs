@@ -27,23 +27,46 @@ pub enum Potential3 {
 
 /// Curl-noise jittering of a 3D lattice. Lengths are in units of the cube edge `spacing`.
 #[derive(Clone, Copy, Debug, PartialEq)]
+///
+/// Built from [`Default`] with the checked setters, as [`Cnj2`]; `|t|` is clamped at query
+/// time so that no site moves more than [`MAX_REACH`] cube edges.
 pub struct Cnj3 {
-    /// Streamline time; `|t|` is clamped so no site moves more than [`MAX_REACH`] cube edges.
-    pub t: f32,
-    /// Noise cell size in cube edges.
-    pub s: f32,
-    /// Seed of the noise.
-    pub seed: u32,
-    /// Cube edge in world units.
-    pub spacing: f32,
-    /// Integration steps over `[0, t]`.
-    pub steps: u32,
-    /// RK4 (default) or Euler.
-    pub integrator: Integrator,
+    t: f32,
+    s: f32,
+    seed: u32,
+    spacing: f32,
+    steps: u32,
+    integrator: Integrator,
+    lattice: Lattice3,
+    potential: Potential3,
+}
+
+super::parameters!(Cnj3, "cube edges", "cube corners (the cube edge)");
+
+impl Cnj3 {
     /// BCC (default) or cubic.
-    pub lattice: Lattice3,
+    #[must_use]
+    pub const fn with_lattice(mut self, lattice: Lattice3) -> Self {
+        self.lattice = lattice;
+        self
+    }
+
     /// The potential (gradient noise by default).
-    pub potential: Potential3,
+    #[must_use]
+    pub const fn with_potential(mut self, potential: Potential3) -> Self {
+        self.potential = potential;
+        self
+    }
+
+    /// The lattice.
+    pub const fn lattice(&self) -> Lattice3 {
+        self.lattice
+    }
+
+    /// The potential.
+    pub const fn potential(&self) -> Potential3 {
+        self.potential
+    }
 }
 
 impl Default for Cnj3 {

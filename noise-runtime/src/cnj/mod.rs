@@ -46,6 +46,123 @@ pub use field::{MIN_SCALE, SOS_WAVES, SumOfSines3, noise2, velocity2, velocity3}
 pub use lattice2::{Cells, Cnj2, MAX_REGION_SITES, Neighbor2, Region2};
 pub use lattice3::{Cnj3, Lattice3, MAX_REACH, Neighbor3, Potential3};
 
+/// A CNJ parameter no lattice can have: named, with the value given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CnjError {
+    /// The point spacing must be finite and positive.
+    Spacing(f32),
+    /// The streamline time must be finite.
+    Time(f32),
+    /// The noise cell size must be finite and at least [`MIN_SCALE`].
+    Scale(f32),
+    /// The integration steps must be in `1..=64`.
+    Steps(u32),
+}
+
+impl core::fmt::Display for CnjError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            CnjError::Spacing(v) => write!(f, "CNJ spacing must be finite and positive, got {v}"),
+            CnjError::Time(v) => write!(f, "CNJ streamline time must be finite, got {v}"),
+            CnjError::Scale(v) => write!(
+                f,
+                "CNJ noise cell size must be finite and at least {MIN_SCALE}, got {v}"
+            ),
+            CnjError::Steps(v) => write!(f, "CNJ integration steps must be 1 to 64, got {v}"),
+        }
+    }
+}
+
+impl core::error::Error for CnjError {}
+
+/// The checked setters and the getters both lattices share.
+macro_rules! parameters {
+    ($ty:ident, $unit:literal, $between:literal) => {
+        impl $ty {
+            #[doc = concat!("The distance between ", $between, ", in world units: finite and positive.")]
+            pub fn with_spacing(mut self, spacing: f32) -> Result<Self, super::CnjError> {
+                if !(spacing.is_finite() && spacing > 0.0) {
+                    return Err(super::CnjError::Spacing(spacing));
+                }
+                self.spacing = spacing;
+                Ok(self)
+            }
+
+            /// The streamline time (the paper's `t`): finite, of either sign.
+            pub fn with_time(mut self, t: f32) -> Result<Self, super::CnjError> {
+                if !t.is_finite() {
+                    return Err(super::CnjError::Time(t));
+                }
+                self.t = t;
+                Ok(self)
+            }
+
+            #[doc = concat!("The noise cell size in ", $unit, " (the paper's `s`): finite and at least [`MIN_SCALE`](super::MIN_SCALE).")]
+            pub fn with_scale(mut self, s: f32) -> Result<Self, super::CnjError> {
+                if !(s.is_finite() && s as f64 >= super::field::MIN_SCALE) {
+                    return Err(super::CnjError::Scale(s));
+                }
+                self.s = s;
+                Ok(self)
+            }
+
+            /// The integration steps over `[0, t]`, 1 to 64.
+            pub fn with_steps(mut self, steps: u32) -> Result<Self, super::CnjError> {
+                if !(1..=64).contains(&steps) {
+                    return Err(super::CnjError::Steps(steps));
+                }
+                self.steps = steps;
+                Ok(self)
+            }
+
+            /// The seed of the noise.
+            #[must_use]
+            pub const fn with_seed(mut self, seed: u32) -> Self {
+                self.seed = seed;
+                self
+            }
+
+            /// RK4 (default) or Euler.
+            #[must_use]
+            pub const fn with_integrator(mut self, integrator: super::Integrator) -> Self {
+                self.integrator = integrator;
+                self
+            }
+
+            /// The point spacing in world units.
+            pub const fn spacing(&self) -> f32 {
+                self.spacing
+            }
+
+            /// The streamline time.
+            pub const fn time(&self) -> f32 {
+                self.t
+            }
+
+            #[doc = concat!("The noise cell size in ", $unit, ".")]
+            pub const fn scale(&self) -> f32 {
+                self.s
+            }
+
+            /// The integration steps.
+            pub const fn steps(&self) -> u32 {
+                self.steps
+            }
+
+            /// The seed.
+            pub const fn seed(&self) -> u32 {
+                self.seed
+            }
+
+            /// The integrator.
+            pub const fn integrator(&self) -> super::Integrator {
+                self.integrator
+            }
+        }
+    };
+}
+use parameters;
+
 /// The parameters `(t, s, steps, spacing)` made safe: a non-finite `t` becomes 0, a
 /// non-positive or non-finite `s` or spacing becomes 1 (and `s ≥` [`MIN_SCALE`]), steps in
 /// `1..=64`.
