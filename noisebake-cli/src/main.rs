@@ -59,13 +59,20 @@ enum Command {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true, num_args = 0..)]
         args: Vec<String>,
     },
-    /// Print quality metrics of a .npy mask as JSON.
+    /// Print quality metrics of a .npy mask beside white noise of the same size, with what
+    /// each means and which way is better (`--json`: the raw metrics).
     Analyze {
         /// The .npy file.
         file: PathBuf,
-        /// Read a trailing axis of 2–4 as channels.
-        #[arg(long)]
+        /// Read a trailing axis of 2–4 as channels (vector formats such as `u8x3`).
+        #[arg(long, conflicts_with = "scalar")]
         channels_last: bool,
+        /// Read every axis as a texture axis, even a trailing one of 2–4 entries.
+        #[arg(long)]
+        scalar: bool,
+        /// Print the metrics as JSON instead of the table.
+        #[arg(long)]
+        json: bool,
     },
     /// Write a 2D point set in the unit torus as CSV (`x,y` per line).
     Points {
@@ -85,10 +92,11 @@ enum Command {
         #[arg(long)]
         analyze: bool,
     },
-    /// The speed-against-error report: `fast` (FAST optimiser), `stochastic` (noise functions),
-    /// or `all` (the default).
+    /// The speed-against-error report: `fast` (FAST masks against every other mask after the
+    /// filters they are made for), `stochastic` (noise functions), `cnj` (point sets, CNJ Table
+    /// 2), or `all` (the default).
     Report {
-        /// Which section.
+        /// Which section: fast, stochastic, cnj or all.
         #[arg(default_value = "all")]
         section: String,
         /// Write the stochastic-noise rows as a JSON list (`{"noise", "variant", "ns_per_eval",
@@ -126,7 +134,9 @@ fn main() -> ExitCode {
         Command::Analyze {
             file,
             channels_last,
-        } => analyze(&file, channels_last),
+            scalar,
+            json,
+        } => analyze(&file, channels_last, scalar, json),
         Command::Points {
             method,
             n,
@@ -375,15 +385,40 @@ fn output_kind(out: &Path, s: &TextureSpec) -> Result<&'static str, String> {
     }
 }
 
-fn analyze(file: &Path, channels_last: bool) -> Result<(), String> {
+fn analyze(file: &Path, channels_last: bool, scalar: bool, json: bool) -> Result<(), String> {
     let bytes = std::fs::read(file).map_err(|e| format!("{}: {e}", file.display()))?;
+    if !channels_last && !scalar {
+        // A vector mask's .npy ends in its channel axis; read as a texture axis it would be
+        // analysed as a meaningless scalar mask of one more dimension.
+        if let Some(c) = npy::shape(&bytes)
+            .ok()
+            .and_then(|s| (s.len() > 1).then(|| s[s.len() - 1]))
+            .filter(|c| (2..=4).contains(c))
+        {
+            return Err(format!(
+                "{}: the last axis has {c} entries, as a {c}-channel (vector) mask's channel axis \
+                 does; pass --channels-last to analyse it as channels, or --scalar to read it as a \
+                 texture axis {c} texels wide",
+                file.display()
+            ));
+        }
+    }
     let t = npy::from_npy(&bytes, "mask", channels_last)
         .map_err(|e| format!("{}: {e}", file.display()))?;
     let report = noisebake_cli::analysis::analyze(&t);
-    println!(
-        "{}",
-        serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
-    );
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        let white = noisebake_cli::analysis::white_like(&t);
+        let base = noisebake_cli::analysis::analyze(&white);
+        print!(
+            "{}",
+            noisebake_cli::analysis::explain(&file.display().to_string(), &t, &report, &base)
+        );
+    }
     Ok(())
 }
 

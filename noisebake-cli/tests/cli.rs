@@ -84,7 +84,7 @@ fn gen_writes_npy_bin_and_png_and_analyze_reads_it() {
     for t in 0..3 {
         assert!(d.join(format!("mask_t{t:03}.png")).exists());
     }
-    let (ok, json, err) = noisebake(&["analyze", npy.to_str().unwrap()]);
+    let (ok, json, err) = noisebake(&["analyze", npy.to_str().unwrap(), "--json"]);
     assert!(ok, "{err}");
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert_eq!(v["histogram_max_deviation"], 0.0);
@@ -264,4 +264,54 @@ fn report_json_is_the_documented_list_of_rows() {
         !ok && err.contains("--json writes the stochastic-noise rows"),
         "{err}"
     );
+}
+
+/// `analyze` reads a mask beside white noise of its size and says which way is better; a
+/// vector mask's channel axis is never silently read as a texture axis.
+#[test]
+fn analyze_explains_its_numbers_and_refuses_to_misread_vectors() {
+    let d = tmp("analyze");
+    let stbn = d.join("stbn.npy");
+    let vec3 = d.join("vec.npy");
+    for (args, out) in [
+        (&["--kind", "stbn", "--dims", "16x16x8", "--histogram", "slice"][..], &stbn),
+        (
+            &["--kind", "fast", "--dims", "16x16x4", "--sample_space", "hemisphere", "--format", "u8x3"][..],
+            &vec3,
+        ),
+    ] {
+        let mut a = vec!["gen"];
+        a.extend_from_slice(args);
+        a.extend_from_slice(&["--out", out.to_str().unwrap()]);
+        let (ok, _, err) = noisebake(&a);
+        assert!(ok, "{err}");
+    }
+    let (ok, text, err) = noisebake(&["analyze", stbn.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    for part in ["white noise", "better", "lower", "reading:", "0.00 %"] {
+        assert!(text.contains(part), "{part:?} in:\n{text}");
+    }
+    // Blue noise's spatial low-frequency power is far below white noise's, in the same row.
+    let row = text
+        .lines()
+        .find(|l| l.contains("spatial low-frequency"))
+        .unwrap();
+    let nums: Vec<f64> = row
+        .split_whitespace()
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    assert!(nums.len() == 2 && nums[0] < 0.2 * nums[1], "{row}");
+
+    let (ok, _, err) = noisebake(&["analyze", vec3.to_str().unwrap()]);
+    assert!(!ok);
+    assert!(
+        err.contains("3 entries") && err.contains("--channels-last") && err.contains("--scalar"),
+        "{err}"
+    );
+    let (ok, text, err) = noisebake(&["analyze", vec3.to_str().unwrap(), "--channels-last"]);
+    assert!(ok, "{err}");
+    assert!(text.contains("16×16×4 texels, u8x3 (channel 0"), "{text}");
+    let (ok, text, err) = noisebake(&["analyze", vec3.to_str().unwrap(), "--scalar"]);
+    assert!(ok, "{err}");
+    assert!(text.contains("3×16×16×4 texels"), "{text}");
 }

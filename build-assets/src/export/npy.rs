@@ -62,6 +62,52 @@ fn field<'a>(header: &'a str, key: &str) -> Result<&'a str, String> {
 /// [`MAX_TEXELS`] in all, and the data must be exactly as long as the shape says. Any other
 /// file is an error naming what is wrong, never a panic or a huge allocation.
 pub fn from_npy(bytes: &[u8], name: &str, channels_last: bool) -> Result<Texture, String> {
+    let (scalar, mut shape, end) = header(bytes)?;
+    let mut channels = 1u8;
+    if channels_last && shape.len() > 1 && (2..=4).contains(shape.last().unwrap_or(&0)) {
+        channels = shape.pop().unwrap_or(1) as u8;
+    }
+    if !(1..=4).contains(&shape.len()) {
+        return Err(format!(
+            "the .npy shape has {} axes; masks have 1 to 4 (plus a channel axis with --channels-last)",
+            shape.len()
+        ));
+    }
+    if shape.contains(&0) {
+        return Err("the .npy shape has an empty axis".into());
+    }
+    let texels = shape
+        .iter()
+        .try_fold(1usize, |acc, &d| acc.checked_mul(d))
+        .filter(|&n| n <= MAX_TEXELS)
+        .ok_or(format!(
+            "the .npy shape {shape:?} holds more than {MAX_TEXELS} texels"
+        ))?;
+    let dims: Vec<usize> = shape.iter().rev().copied().collect();
+    let format = Format { scalar, channels };
+    let want = texels * format.texel_bytes();
+    let data = &bytes[end..];
+    if data.len() != want {
+        return Err(format!(
+            "the .npy data holds {} bytes, its shape needs {want}",
+            data.len()
+        ));
+    }
+    Ok(Texture {
+        name: name.to_string(),
+        dims,
+        format,
+        data: data.to_vec(),
+    })
+}
+
+/// The shape of a `.npy` file as NumPy states it (slowest axis first), read from its header.
+pub fn shape(bytes: &[u8]) -> Result<Vec<usize>, String> {
+    header(bytes).map(|(_, shape, _)| shape)
+}
+
+/// Parses [`from_npy`]'s header: the scalar type, the shape and where the data starts.
+fn header(bytes: &[u8]) -> Result<(Scalar, Vec<usize>, usize), String> {
     if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
         return Err("not a .npy file (bad magic)".into());
     }
@@ -103,48 +149,13 @@ pub fn from_npy(bytes: &[u8], name: &str, channels_last: bool) -> Result<Texture
         .strip_prefix('(')
         .and_then(|r| r.find(')').map(|c| &r[..c]))
         .ok_or("the .npy shape is not a tuple `(…)`")?;
-    let mut shape: Vec<usize> = inner
+    let shape: Vec<usize> = inner
         .split(',')
         .map(str::trim)
         .filter(|s| !s.is_empty())
         .map(|s| s.parse().map_err(|_| format!("bad shape entry `{s}`")))
         .collect::<Result<_, String>>()?;
-    let mut channels = 1u8;
-    if channels_last && shape.len() > 1 && (2..=4).contains(shape.last().unwrap_or(&0)) {
-        channels = shape.pop().unwrap_or(1) as u8;
-    }
-    if !(1..=4).contains(&shape.len()) {
-        return Err(format!(
-            "the .npy shape has {} axes; masks have 1 to 4 (plus a channel axis with --channels-last)",
-            shape.len()
-        ));
-    }
-    if shape.contains(&0) {
-        return Err("the .npy shape has an empty axis".into());
-    }
-    let texels = shape
-        .iter()
-        .try_fold(1usize, |acc, &d| acc.checked_mul(d))
-        .filter(|&n| n <= MAX_TEXELS)
-        .ok_or(format!(
-            "the .npy shape {shape:?} holds more than {MAX_TEXELS} texels"
-        ))?;
-    let dims: Vec<usize> = shape.iter().rev().copied().collect();
-    let format = Format { scalar, channels };
-    let want = texels * format.texel_bytes();
-    let data = &bytes[end..];
-    if data.len() != want {
-        return Err(format!(
-            "the .npy data holds {} bytes, its shape needs {want}",
-            data.len()
-        ));
-    }
-    Ok(Texture {
-        name: name.to_string(),
-        dims,
-        format,
-        data: data.to_vec(),
-    })
+    Ok((scalar, shape, end))
 }
 
 #[cfg(test)]

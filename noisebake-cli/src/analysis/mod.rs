@@ -188,3 +188,103 @@ fn convergence(
         ema_rmse: ema,
     }
 }
+
+/// White noise of `t`'s dims and scalar type (seed 1; one channel, as only channel 0 is
+/// analysed): the baseline [`explain`] reads a mask against, since every metric here is
+/// relative and means something only beside it.
+pub fn white_like(t: &Texture) -> Texture {
+    let dims: Vec<String> = t.dims.iter().map(usize::to_string).collect();
+    let text = format!(
+        "[[texture]]\nname = \"WHITE\"\nkind = \"white\"\ndims = [{}]\nseed = 1\nformat = \"{}\"\n",
+        dims.join(", "),
+        build_assets::spec::Format {
+            channels: 1,
+            ..t.format
+        }
+    );
+    let spec = build_assets::spec::parse_toml(&text)
+        .ok()
+        .and_then(|f| f.textures.into_iter().next())
+        .expect("a white spec of a texture's own dims and format is valid");
+    build_assets::generate(&spec, &mut |_, _| {})
+}
+
+/// The report as a person reads it: each metric of `mask` beside white noise of the same
+/// size (`white`), what it measures, and which way is better.
+pub fn explain(file: &str, t: &Texture, mask: &MaskReport, white: &MaskReport) -> String {
+    use std::fmt::Write;
+    let dims: Vec<String> = t.dims.iter().map(usize::to_string).collect();
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{file}: {} texels, {}{}",
+        dims.join("×"),
+        t.format,
+        if t.format.channels > 1 {
+            " (channel 0 analysed)"
+        } else {
+            ""
+        }
+    );
+    let _ = writeln!(
+        s,
+        "  {:<44} {:>10} {:>12}   better",
+        "metric", "this mask", "white noise"
+    );
+    let mut row = |name: &str, a: f64, b: f64, pct: bool| {
+        let f = |v: f64| {
+            if pct {
+                format!("{:.2} %", v * 100.0)
+            } else {
+                format!("{v:.4}")
+            }
+        };
+        let _ = writeln!(s, "  {name:<44} {:>10} {:>12}   lower", f(a), f(b));
+    };
+    row(
+        "spatial low-frequency power (slice mean)",
+        mask.spatial_lf_mean,
+        white.spatial_lf_mean,
+        false,
+    );
+    if let (Some(a), Some(b)) = (mask.temporal_lf, white.temporal_lf) {
+        row("temporal low-frequency power (per pixel)", a, b, false);
+    }
+    row(
+        "histogram: largest bin off flat",
+        mask.histogram_max_deviation,
+        white.histogram_max_deviation,
+        true,
+    );
+    for (m, w) in mask.convergence.iter().zip(&white.convergence) {
+        row(
+            &format!("{}: RMSE of the k-frame mean, mean over k", m.integrand),
+            m.mc_mean,
+            w.mc_mean,
+            false,
+        );
+        row(
+            &format!("{}: RMSE of the EMA (α {EMA_ALPHA}), steady", m.integrand),
+            m.ema_steady,
+            w.ema_steady,
+            false,
+        );
+    }
+    let _ = write!(
+        s,
+        "\
+reading:
+  low-frequency power: the mean DFT power at frequencies up to {LOW_FREQUENCY} cycles per texel
+    over the mean at all non-zero frequencies; white noise is about 1, blue noise far below
+    (its spectrum is empty near the origin, so errors it leaves blur away).
+  histogram: the largest relative difference between a bin's count and the flat count, over
+    every 2D slice ({} bins per slice); 0 % means every value occurs equally often.
+  RMSE: the error, over pixels, of estimating ∫₀¹ f for a ramp, a step and a sine with the
+    pixel's values over frames: the plain mean of the first k frames (mean over k = 1..T), and
+    an exponential moving average at its steady state (frames loop).
+  `--json` prints every number, per slice and per frame.
+",
+        (t.dims[0] * t.dims.get(1).copied().unwrap_or(1)).min(256)
+    );
+    s
+}
