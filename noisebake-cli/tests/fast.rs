@@ -287,3 +287,30 @@ fn fast_for_the_measured_filter_beats_ign_and_stbn_with_flat_slices() {
     assert!(f.rmse_gauss < i.rmse_gauss && f.rmse_gauss < s.rmse_gauss);
     assert!(f.loss < i.loss && f.loss < s.loss);
 }
+
+/// The report's `loss->rmse` column is the RMSE measured directly after the same filter
+/// (Gaussian σ 1.3435 × steady-state EMA α 0.1), for masks far apart in quality: the loss in
+/// units a reader can compare.
+#[test]
+fn the_loss_predicts_the_measured_rmse() {
+    use noisebake_cli::report::compare::{loss_params, measure};
+    let dims = [32, 32, 16];
+    let fps = [
+        loss_params(0.0).footprint(&dims),
+        loss_params(0.1).footprint(&dims),
+    ];
+    let mut seen = Vec::new();
+    for kind in ["white", "stbn", "golden"] {
+        let r = measure(kind, &baseline(kind, dims), dims, &fps);
+        let rel = (r.loss_rmse - r.rmse_gauss).abs() / r.rmse_gauss;
+        assert!(
+            rel < 0.08,
+            "{kind}: loss predicts {} , measured {}",
+            r.loss_rmse,
+            r.rmse_gauss
+        );
+        seen.push(r.rmse_gauss);
+    }
+    // The masks differ severalfold, so agreement is not one constant matching another.
+    assert!(seen[0] > 2.0 * seen[1], "{seen:?}");
+}

@@ -185,6 +185,10 @@ pub struct Footprint {
     pub radius: [usize; 2],
     /// Weight dropped by the cutoff, relative to the kept total.
     pub dropped: f64,
+    /// Every weight kept, `F(0, 0, 0)` included: the row sum of `F` as the loss sees it (1
+    /// less the cutoff for a filter whose weights sum to 1). With it the loss converts to the
+    /// mean squared error it predicts (`noisebake report fast`'s `loss->rmse`).
+    pub total: f64,
 }
 
 /// Distinct offsets on a ring of `n`: `-(n-1)/2 ..= n/2`.
@@ -266,6 +270,7 @@ impl Footprint {
             same_slice,
             radius,
             dropped: if kept > 0.0 { dropped / kept } else { 0.0 },
+            total: kept + weight(0, 0, 0).max(0.0),
         }
     }
 

@@ -279,6 +279,9 @@ pub fn main() {
                     None => println!("  {:<58} {:>8.2} ms", r.what, r.seconds * 1e3),
                 }
             }
+            for line in noisebake_cli::analysis::points::READING.lines() {
+                println!("  {line}");
+            }
             println!(
                 "\nstochastic noise: fBm cloud, deterministic vs one-sample fBm density at equal time (1 thread):"
             );

@@ -243,6 +243,11 @@ pub fn extra_panels(
             let _ = write!(html, "<p>{}: {:.1} ms</p>", r.what, r.seconds * 1e3);
         }
     }
+    let _ = write!(
+        html,
+        "<pre>{}</pre>",
+        noisebake_cli::analysis::points::READING
+    );
     html += "<h2>stochastic noise</h2><p>A procedural fBm cloud (single scattering, ratio tracking) with the density evaluated deterministically, by the one-sample fBm estimator (Fajardo &amp; Pharr), or with its largest octaves exact and one octave of the rest sampled; all unbiased, RMSE against 1024 spp. The table compares them at equal time (`cargo run --release --example cloud` adds the paper's Table 3 scene and a procedural material).</p>\n";
     let _ = writeln!(html, "<pre>{}</pre>", cloud.table);
     html += "<figure><img src=\"cloud_reference.png\" style=\"width:256px\" alt=\"fBm cloud, 1024-spp reference\"><figcaption>reference</figcaption></figure>";

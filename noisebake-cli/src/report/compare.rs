@@ -32,6 +32,10 @@ pub struct Row {
     pub loss: f64,
     /// The loss relative to white noise's (1 = white).
     pub loss_vs_white: f64,
+    /// The loss in the units of the measured columns: the RMSE it predicts after the same
+    /// filter for step integrands with a uniform threshold ([`loss_as_rmse`]). It should sit
+    /// beside `rmse_gauss`; the raw loss is dominated by a constant its differences ride on.
+    pub loss_rmse: f64,
     /// The loss with history rejection β = 0.1 (FAST eq. 17), the filter EA's texture was
     /// made for; it models an EMA whose history is dropped with probability β each frame,
     /// which the measurement does not run.
@@ -169,6 +173,19 @@ pub fn loss_params(beta: f64) -> fast::FastParams {
     p
 }
 
+/// The RMSE a FAST loss predicts (the `fast` module's derivation): for step integrands
+/// `[s < c]` with `c` uniform, the filtered image's mean squared error is
+/// `R · mean_j(1/3 − s_j + s_j²) + L / (2N)`, where `L` is the loss of eq. 7 (negative) over
+/// `N` texels and `R` the footprint's row sum ([`fast::Footprint::total`]; the pairs the
+/// cutoff drops are nearly independent, and the kernel's mean over independent uniform pairs
+/// is 0). The constant depends only on the values, so masks with flat histograms share it and
+/// differ by `ΔL / 2N` exactly.
+pub fn loss_as_rmse(loss: f64, values: &[f64], fp: &fast::Footprint) -> f64 {
+    let n = values.len().max(1) as f64;
+    let c = values.iter().map(|s| 1.0 / 3.0 - s + s * s).sum::<f64>() / n;
+    (fp.total * c + loss / (2.0 * n)).max(0.0).sqrt()
+}
+
 /// Loss and measured errors of one mask; `fps` are the footprints of β = 0 and β = 0.1.
 pub fn measure(name: &str, values: &[f64], dims: [usize; 3], fps: &[fast::Footprint; 2]) -> Row {
     let l = |fp: &fast::Footprint| {
@@ -181,10 +198,12 @@ pub fn measure(name: &str, values: &[f64], dims: [usize; 3], fps: &[fast::Footpr
         ema_alpha: Some(0.1),
     };
     let gauss = d(Filter::Gauss { sigma: 1.3435 });
+    let loss = l(&fps[0]);
     Row {
         mask: name.into(),
-        loss: l(&fps[0]),
+        loss,
         loss_vs_white: f64::NAN,
+        loss_rmse: loss_as_rmse(loss, values, &fps[0]),
         loss_beta_0_1: l(&fps[1]),
         rmse_gauss: filtered_rmse(values, dims, &gauss),
         rmse_box3: filtered_rmse(values, dims, &d(Filter::Box { size: 3 })),
@@ -259,10 +278,21 @@ pub fn table(dims: [usize; 3], log: &mut dyn FnMut(&str)) -> Result<Table, Strin
     Ok(Table { dims, rows })
 }
 
+/// What the table's columns mean, printed under it.
+pub const READING: &str = "\
+loss: FAST's eq. (7) for Gaussian σ 1.3435 × plain EMA α 0.1 (β 0), lower is better; /white: over
+  white noise's. The loss is a large constant plus the part that differs between masks, so its
+  ratios look close to 1 where errors differ severalfold. loss b=0.1: the same with EA's
+  history rejection (eq. 17). loss->rmse: the RMSE that loss predicts after the filter for step
+  integrands with a uniform threshold (mean(1/3 − s + s²) + loss / 2N), in the units of:
+rmse gauss / box3 / box5: the RMSE measured directly after a Gaussian σ 1.3435, a 3×3 or a 5×5
+  box per frame, then the EMA α 0.1 at its steady state over the looping texture; lower is better.
+seconds: time to bake (or compute the hash); `cached` when the bake came from the cache.";
+
 /// The table as text, one line per row.
 pub fn describe(t: &Table) -> Vec<String> {
     let mut out = vec![format!(
-        "  {}x{}x{}: {:<36} {:>14} {:>8} {:>14} {:>10} {:>10} {:>10} {:>8}",
+        "  {}x{}x{}: {:<36} {:>14} {:>8} {:>14} {:>10} {:>10} {:>10} {:>10} {:>8}",
         t.dims[0],
         t.dims[1],
         t.dims[2],
@@ -270,6 +300,7 @@ pub fn describe(t: &Table) -> Vec<String> {
         "loss",
         "/white",
         "loss b=0.1",
+        "loss->rmse",
         "rmse gauss",
         "rmse box3",
         "rmse box5",
@@ -277,11 +308,12 @@ pub fn describe(t: &Table) -> Vec<String> {
     )];
     for r in &t.rows {
         out.push(format!(
-            "  {:<48} {:>14.2} {:>8.5} {:>14.2} {:>10.5} {:>10.5} {:>10.5} {:>8}",
+            "  {:<48} {:>14.2} {:>8.5} {:>14.2} {:>10.5} {:>10.5} {:>10.5} {:>10.5} {:>8}",
             r.mask,
             r.loss,
             r.loss_vs_white,
             r.loss_beta_0_1,
+            r.loss_rmse,
             r.rmse_gauss,
             r.rmse_box3,
             r.rmse_box5,

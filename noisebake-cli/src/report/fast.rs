@@ -451,6 +451,9 @@ pub fn run(
         for line in super::compare::describe(&t) {
             log(&line);
         }
+        for line in super::compare::READING.lines() {
+            log(&format!("  {line}"));
+        }
         let path = out.join(format!(
             "fast_compare_{}x{}x{}.png",
             dims[0], dims[1], dims[2]
