@@ -31,6 +31,8 @@ pub enum Error {
         name: String,
         /// Where it was looked for.
         entry: PathBuf,
+        /// Its canonical spec (what the entry would hold).
+        spec: String,
     },
     /// No cache directory or fallback could hold a generated texture that has to be a file (the
     /// macro embeds the entry file itself).
@@ -62,10 +64,11 @@ impl fmt::Display for Error {
                 path,
                 source,
             } => write!(f, "{action} {}: {source}", path.display()),
-            Error::Offline { name, entry } => write!(
+            Error::Offline { name, entry, spec } => write!(
                 f,
-                "NOISEBAKE_OFFLINE is set and texture `{name}` is not in the cache (expected {}); bake it once online and commit the cache directory",
-                entry.display()
+                "NOISEBAKE_OFFLINE is set and texture `{name}` is not in the cache (expected {}); its spec: {spec}. Bake it once without NOISEBAKE_OFFLINE (`cargo build`, or `noisebake bake SPEC.toml --out DIR --cache-dir {}`) and commit the cache directory",
+                entry.display(),
+                entry.parent().map_or_else(|| ".".into(), |d| d.display().to_string())
             ),
             Error::NoWritableCache { name, tried } => {
                 write!(

@@ -198,11 +198,13 @@ fn an_unwritable_cache_falls_back_to_out_dir_with_a_warning() {
         "{:?}",
         r.warnings
     );
-    assert_eq!(
-        std::fs::read_dir(&fallback).unwrap().count(),
-        2,
-        "entry and lock"
-    );
+    let mut names: Vec<String> = std::fs::read_dir(&fallback)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 4, "entry, lock, .gitignore, used/: {names:?}");
+    assert!(names[0] == ".gitignore" && names[3] == "used", "{names:?}");
 }
 
 /// A read-only cache whose entries are all present serves them: nothing is generated or
@@ -671,4 +673,144 @@ fn kill_9_mid_bake_leaves_nothing_wrong() {
         let tmps = files_ending(&d, &[".tmp"]);
         assert!(tmps.is_empty(), "round {round}: {tmps:?}");
     }
+}
+
+/// A written cache directory ignores its locks, temporaries and use records for git; hits and
+/// generations record their last use in `used/<key>`, never touching the entry itself.
+#[test]
+fn writes_leave_a_gitignore_and_hits_record_their_use() {
+    use build_assets::cache::tidy;
+    let dir = tmp("tidy");
+    let s = spec(STBN);
+    let key = build_assets::cache::key(&s);
+    Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
+    let ignore = std::fs::read_to_string(dir.join(".gitignore")).unwrap();
+    for pat in ["*.lock", "*.tmp", "used/"] {
+        assert!(ignore.lines().any(|l| l == pat), "{ignore}");
+    }
+    // A user's own .gitignore is never overwritten.
+    std::fs::write(dir.join(".gitignore"), "mine\n").unwrap();
+    let used = dir.join(tidy::USED_DIR).join(&key);
+    let old = std::time::SystemTime::UNIX_EPOCH + std::time::Duration::from_secs(1_500_000_000);
+    std::fs::File::options()
+        .write(true)
+        .open(&used)
+        .unwrap()
+        .set_modified(old)
+        .unwrap();
+    let entry_time = std::fs::metadata(Cache::path_in(&dir, &s))
+        .unwrap()
+        .modified()
+        .unwrap();
+    let e = Cache::new(&dir).get(&s, &mut |_, _| panic!("a hit")).unwrap();
+    assert_eq!(e.source, Source::Hit);
+    let t = std::fs::metadata(&used).unwrap().modified().unwrap();
+    assert!(t > old, "the hit was not recorded");
+    assert_eq!(
+        std::fs::metadata(Cache::path_in(&dir, &s))
+            .unwrap()
+            .modified()
+            .unwrap(),
+        entry_time
+    );
+    assert_eq!(std::fs::read_to_string(dir.join(".gitignore")).unwrap(), "mine\n");
+}
+
+/// `tidy::list` checks entries without their specs: valid, stale (keyed for an older
+/// generator) and corrupt, each named; `prune` removes what it is told to and refuses a
+/// directory it cannot write before deleting anything.
+#[test]
+fn tidy_lists_verifies_and_prunes() {
+    use build_assets::cache::tidy::{self, Prune, Status};
+    let dir = tmp("prune");
+    let (a, b) = (spec(STBN), spec("kind = \"white\"\ndims = [8, 8]\nseed = 2"));
+    let mut c = Cache::new(&dir);
+    c.get(&a, &mut |_, _| {}).unwrap();
+    c.get(&b, &mut |_, _| {}).unwrap();
+    // A stale entry: a's bytes under the key an older generator version gave its spec.
+    let old_key = format!(
+        "{:032x}",
+        build_assets::cache::fnv128(
+            format!("v{};{}", build_assets::ALGORITHM_VERSION - 1, a.canonical()).as_bytes()
+        )
+    );
+    std::fs::copy(Cache::path_in(&dir, &a), dir.join(format!("{old_key}.nbk"))).unwrap();
+    // A corrupt one: b's entry with a flipped data byte.
+    let bad = Cache::path_in(&dir, &b);
+    let mut bytes = std::fs::read(&bad).unwrap();
+    bytes[build_assets::cache::HEADER] ^= 0x40;
+    std::fs::write(&bad, &bytes).unwrap();
+    let listed = tidy::list(&dir).unwrap();
+    assert_eq!(listed.len(), 3);
+    let state = |k: &str| {
+        listed
+            .iter()
+            .find(|e| e.key == k)
+            .map(|e| e.status.clone())
+            .unwrap()
+    };
+    assert_eq!(state(&build_assets::cache::key(&a)), Status::Valid);
+    assert_eq!(state(&old_key), Status::Stale);
+    assert!(
+        matches!(state(&build_assets::cache::key(&b)), Status::Corrupt(w) if w.contains("hash")),
+        "{listed:?}"
+    );
+    let valid = listed.iter().find(|e| e.status == Status::Valid).unwrap();
+    assert_eq!(valid.spec.as_deref(), Some(a.canonical().as_str()));
+
+    // Nothing is deleted where nothing can be written: the probe's place is taken.
+    let probe = dir.join(format!(".prune-probe-{}.tmp", std::process::id()));
+    std::fs::create_dir(&probe).unwrap();
+    let all = Prune {
+        unused_since: Some(std::time::SystemTime::now() + std::time::Duration::from_secs(60)),
+        stale: true,
+        corrupt: true,
+        dry_run: false,
+    };
+    let e = tidy::prune(&dir, all).unwrap_err();
+    assert!(e.to_string().contains("nothing was deleted"), "{e}");
+    assert_eq!(tidy::list(&dir).unwrap().len(), 3);
+    std::fs::remove_dir(&probe).unwrap();
+
+    // A dry run names, a run removes: stale and corrupt first, the valid entry is kept
+    // because it was used after the cut-off.
+    let cut = std::time::SystemTime::now() - std::time::Duration::from_secs(3600);
+    let some = Prune {
+        unused_since: Some(cut),
+        stale: true,
+        corrupt: true,
+        dry_run: true,
+    };
+    assert_eq!(tidy::prune(&dir, some).unwrap().len(), 2);
+    assert_eq!(tidy::list(&dir).unwrap().len(), 3);
+    let gone = tidy::prune(&dir, Prune { dry_run: false, ..some }).unwrap();
+    assert_eq!(gone.len(), 2);
+    let left = tidy::list(&dir).unwrap();
+    assert_eq!(left.len(), 1);
+    assert_eq!(left[0].status, Status::Valid);
+    // Unused since a time after its last use: it goes too.
+    assert_eq!(tidy::prune(&dir, all).unwrap().len(), 1);
+    assert!(tidy::list(&dir).unwrap().is_empty());
+}
+
+/// An entry found only in the fallback is copied into the cache directory when that can be
+/// written: pointing a build at a new (committed) cache directory fills it with every entry
+/// the build uses, even those an earlier build left in the fallback.
+#[test]
+fn fallback_hits_are_promoted_into_the_cache_directory() {
+    let dir = tmp("promote");
+    let s = spec(STBN);
+    Cache::new(dir.join("fallback"))
+        .get(&s, &mut |_, _| {})
+        .unwrap();
+    let mut c = Cache::new(dir.join("committed"));
+    c.fallback = Some(dir.join("fallback"));
+    let e = c.get(&s, &mut |_, _| panic!("a hit")).unwrap();
+    assert_eq!(e.source, Source::Hit);
+    let promoted = Cache::path_in(&dir.join("committed"), &s);
+    assert_eq!(e.path.as_deref(), Some(promoted.as_path()));
+    assert_eq!(
+        std::fs::read(&promoted).unwrap(),
+        std::fs::read(Cache::path_in(&dir.join("fallback"), &s)).unwrap()
+    );
 }

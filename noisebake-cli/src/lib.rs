@@ -6,6 +6,7 @@
 //! this crate; the generators it measures live in `build-assets`.
 
 pub mod analysis;
+pub mod cache;
 pub mod export;
 pub mod points;
 pub mod report;

@@ -4,6 +4,7 @@
 //! noisebake bake SPEC.toml --out DIR [--png] [--ktx2]
 //! noisebake gen --kind stbn --dims 64x64x16 [--seed 7 --format u16 --KEY VALUE ...] --out FILE.{npy,ktx2,png,bin}
 //! noisebake analyze FILE.npy
+//! noisebake cache list | verify | prune [--cache-dir DIR]
 //! ```
 
 use build_assets::cache::{Locator, Source};
@@ -92,6 +93,12 @@ enum Command {
         #[arg(long)]
         analyze: bool,
     },
+    /// A cache directory: `list` its entries (spec, size, last use), `verify` every entry
+    /// (exit code 1 if any is corrupt; for CI), `prune` the ones no build uses any more.
+    Cache {
+        #[command(subcommand)]
+        action: CacheAction,
+    },
     /// The speed-against-error report: `fast` (FAST masks against every other mask after the
     /// filters they are made for), `stochastic` (noise functions), `cnj` (point sets, CNJ Table
     /// 2), or `all` (the default).
@@ -120,6 +127,79 @@ enum Command {
     },
 }
 
+#[derive(Subcommand)]
+enum CacheAction {
+    /// Every entry: key, size, valid/stale/corrupt, last use, and the spec it holds.
+    List {
+        /// The cache directory (default: the one `noisebake bake noise.toml` uses from here).
+        #[arg(long)]
+        cache_dir: Option<PathBuf>,
+    },
+    /// Checks every entry (header, lengths, hashes, key); exits 1 if any is corrupt.
+    Verify {
+        /// The cache directory (default: the one `noisebake bake noise.toml` uses from here).
+        #[arg(long)]
+        cache_dir: Option<PathBuf>,
+    },
+    /// Removes entries: unused since a time, stale (another generator version), corrupt.
+    /// After a full build: `T=$(date +%s); cargo clean && cargo build; noisebake cache prune
+    /// --unused-since $T`.
+    Prune {
+        /// The cache directory (default: the one `noisebake bake noise.toml` uses from here).
+        #[arg(long)]
+        cache_dir: Option<PathBuf>,
+        /// Remove valid entries no build has used since then: seconds since 1970 (`date
+        /// +%s`), or an age such as 30d, 12h, 45m.
+        #[arg(long)]
+        unused_since: Option<String>,
+        /// Remove entries of other generator versions.
+        #[arg(long)]
+        stale: bool,
+        /// Remove entries that fail verification.
+        #[arg(long)]
+        corrupt: bool,
+        /// Say what would be removed, remove nothing.
+        #[arg(long)]
+        dry_run: bool,
+    },
+}
+
+fn cache_cmd(action: CacheAction) -> Result<(), String> {
+    use noisebake_cli::cache;
+    let cwd = std::env::current_dir().map_err(|e| format!("the working directory: {e}"))?;
+    let now = std::time::SystemTime::now();
+    match action {
+        CacheAction::List { cache_dir } => {
+            print!("{}", cache::list(&cache::locate(cache_dir, &cwd)?, now)?);
+        }
+        CacheAction::Verify { cache_dir } => {
+            let (text, ok) = cache::verify(&cache::locate(cache_dir, &cwd)?)?;
+            print!("{text}");
+            if !ok {
+                return Err("corrupt cache entries (listed above)".into());
+            }
+        }
+        CacheAction::Prune {
+            cache_dir,
+            unused_since,
+            stale,
+            corrupt,
+            dry_run,
+        } => {
+            let what = build_assets::cache::tidy::Prune {
+                unused_since: unused_since
+                    .map(|s| cache::parse_since(&s, now))
+                    .transpose()?,
+                stale,
+                corrupt,
+                dry_run,
+            };
+            print!("{}", cache::prune(&cache::locate(cache_dir, &cwd)?, what)?);
+        }
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -144,6 +224,7 @@ fn main() -> ExitCode {
             out,
             analyze,
         } => points_cmd(&method, n, seed, &out, analyze),
+        Command::Cache { action } => cache_cmd(action),
         Command::Report {
             section,
             json,

@@ -315,3 +315,56 @@ fn analyze_explains_its_numbers_and_refuses_to_misread_vectors() {
     assert!(ok, "{err}");
     assert!(text.contains("3×16×16×4 texels"), "{text}");
 }
+
+/// `cache list | verify | prune` on a committed-style cache: the spec of each entry, a
+/// corrupt entry reported with its reason and a failing exit code (never deleted by
+/// `verify`), then removed by `prune --corrupt`; `prune` with nothing to select says so.
+#[test]
+fn cache_commands_list_verify_and_prune() {
+    let d = tmp("cachecmd");
+    let spec = d.join("noise.toml");
+    let cache = d.join("committed");
+    std::fs::write(&spec, "[[texture]]\nname = \"A\"\nkind = \"blue2d\"\ndims = [16, 16]\n\n[[texture]]\nname = \"B\"\nkind = \"white\"\ndims = [4, 4, 2]\n").unwrap();
+    let c = cache.to_str().unwrap();
+    let (ok, _, err) = noisebake(&[
+        "bake",
+        spec.to_str().unwrap(),
+        "--out",
+        d.join("out").to_str().unwrap(),
+        "--cache-dir",
+        c,
+    ]);
+    assert!(ok, "{err}");
+    let (ok, out, err) = noisebake(&["cache", "list", "--cache-dir", c]);
+    assert!(ok, "{err}");
+    assert!(out.contains("2 entries") && out.contains("kind=blue2d"), "{out}");
+    assert!(out.contains("valid") && out.contains("s ago"), "{out}");
+    let (ok, out, _) = noisebake(&["cache", "verify", "--cache-dir", c]);
+    assert!(ok && out.contains("2 valid, 0 stale, 0 corrupt"), "{out}");
+
+    let entry = std::fs::read_dir(&cache)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|x| x == "nbk"))
+        .unwrap();
+    let mut bytes = std::fs::read(&entry).unwrap();
+    bytes.truncate(bytes.len() - 1);
+    std::fs::write(&entry, &bytes).unwrap();
+    let (ok, out, err) = noisebake(&["cache", "verify", "--cache-dir", c]);
+    assert!(!ok, "{out}");
+    assert!(out.contains("CORRUPT: truncated") && err.contains("corrupt"), "{out}{err}");
+    assert!(entry.exists(), "verify deleted an entry");
+
+    let (ok, _, err) = noisebake(&["cache", "prune", "--cache-dir", c]);
+    assert!(!ok && err.contains("say what to prune"), "{err}");
+    let (ok, _, err) = noisebake(&["cache", "prune", "--cache-dir", c, "--unused-since", "soon"]);
+    assert!(!ok && err.contains("date +%s"), "{err}");
+    let (ok, out, err) = noisebake(&["cache", "prune", "--cache-dir", c, "--corrupt"]);
+    assert!(ok, "{err}");
+    assert!(out.contains("removed 1 entries") && !entry.exists(), "{out}");
+    // Everything was used moments ago: an hour's cut-off keeps the rest.
+    let (ok, out, _) = noisebake(&["cache", "prune", "--cache-dir", c, "--unused-since", "1h"]);
+    assert!(ok && out.contains("removed 0 entries"), "{out}");
+    let (ok, out, _) = noisebake(&["cache", "verify", "--cache-dir", c]);
+    assert!(ok && out.contains("1 entries, 1 valid"), "{out}");
+}

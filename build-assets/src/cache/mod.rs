@@ -27,12 +27,19 @@
 //! 4. `noisebake-cache/` in the workspace target directory (`CARGO_TARGET_DIR`, else found
 //!    from `OUT_DIR`, else `target/` beside the outermost `Cargo.lock`).
 //!
+//! **Tidiness** ([`tidy`]): the first write into a directory leaves a `.gitignore` for its
+//! locks, temporaries and `used/` last-use records, so a committed cache commits only its
+//! entries; [`tidy::list`], [`tidy::check`] and [`tidy::prune`] are `noisebake cache list |
+//! verify | prune`.
+//!
 //! **Faults** follow one policy: a hit is served from wherever it is readable (a read-only
 //! cache with every entry present costs nothing); a miss that cannot be written into the cache
 //! directory (read-only, full, a directory where a file should be) is written to the fallback
 //! (`OUT_DIR/noisebake-cache`, else the system temporary directory) with a warning; if that
 //! fails too the texture is still returned, uncached. With `NOISEBAKE_OFFLINE=1` a miss is an
 //! error instead of a generation (commit the cache directory and build offline in CI).
+
+pub mod tidy;
 
 use crate::atomic;
 use crate::error::{Error, Warning};
@@ -392,6 +399,14 @@ impl Cache {
             let path = Self::path_in(&dir, spec);
             match read_entry(&path, spec) {
                 Read::Hit(texture) => {
+                    // A hit in the fallback is copied into the cache directory when it can
+                    // be written, so a committed cache gains every entry its builds use.
+                    let path = if dir != self.dir {
+                        self.promote(&texture, spec).unwrap_or(path)
+                    } else {
+                        tidy::record_use(&dir, &key(spec));
+                        path
+                    };
                     found = Some(Entry {
                         texture,
                         path: Some(path),
@@ -408,6 +423,20 @@ impl Cache {
         found
     }
 
+    /// Writes a texture found in the fallback into the cache directory (silently nothing when
+    /// that cannot be written); the entry's path there on success.
+    fn promote(&self, t: &Texture, spec: &TextureSpec) -> Option<PathBuf> {
+        let path = self.path(spec);
+        fs::create_dir_all(&self.dir).ok()?;
+        tidy::ensure_gitignore(&self.dir);
+        atomic::write(&path, &encode(t, spec)).ok()?;
+        if let Ok(f) = File::options().write(true).open(&path) {
+            let _ = f.set_modified(SystemTime::UNIX_EPOCH + ENTRY_MTIME);
+        }
+        tidy::record_use(&self.dir, &key(spec));
+        Some(path)
+    }
+
     /// The texture of `spec`, from the cache or generated (once, under a lock) and stored.
     /// `progress` sees generation progress.
     pub fn get(
@@ -422,6 +451,7 @@ impl Cache {
             return Err(Error::Offline {
                 name: spec.name.clone(),
                 entry: self.path(spec),
+                spec: spec.canonical(),
             });
         }
         let mut tried = Vec::new();
@@ -471,6 +501,7 @@ impl Cache {
         progress: &mut dyn FnMut(u64, u64),
     ) -> io::Result<Entry> {
         fs::create_dir_all(dir)?;
+        tidy::ensure_gitignore(dir);
         let key = key(spec);
         let lock = OpenOptions::new()
             .create(true)
@@ -481,6 +512,7 @@ impl Cache {
         let path = Self::path_in(dir, spec);
         // Another process may have finished the entry while we waited.
         if let Read::Hit(t) = read_entry(&path, spec) {
+            tidy::record_use(dir, &key);
             return Ok(Entry {
                 texture: t,
                 path: Some(path),
@@ -497,6 +529,7 @@ impl Cache {
             let _ = f.set_modified(SystemTime::UNIX_EPOCH + ENTRY_MTIME);
         }
         drop(lock);
+        tidy::record_use(dir, &key);
         Ok(Entry {
             texture: t.clone(),
             path: Some(path),
