@@ -174,8 +174,10 @@
 //! Unknown keys, wrong types and impossible values are errors that name the key and point at
 //! its line (spec file) or token (macro).
 #![no_std]
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 #[cfg(feature = "macros")]
+#[cfg_attr(docsrs, doc(cfg(feature = "macros")))]
 pub use noise_macros::noise_texture;
 pub use noise_runtime::*;
 

@@ -68,7 +68,9 @@ impl fmt::Display for Error {
                 f,
                 "NOISEBAKE_OFFLINE is set and texture `{name}` is not in the cache (expected {}); its spec: {spec}. Bake it once without NOISEBAKE_OFFLINE (`cargo build`, or `noisebake bake SPEC.toml --out DIR --cache-dir {}`) and commit the cache directory",
                 entry.display(),
-                entry.parent().map_or_else(|| ".".into(), |d| d.display().to_string())
+                entry
+                    .parent()
+                    .map_or_else(|| ".".into(), |d| d.display().to_string())
             ),
             Error::NoWritableCache { name, tried } => {
                 write!(

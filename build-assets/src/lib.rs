@@ -9,6 +9,7 @@
 //! machine, thread count and build profile. The command-line tool, reports, analysis and plots
 //! live in the `noisebake-cli` crate, so a game's build compiles none of them; see
 //! `ARCHITECTURE.md` for the crates and what may depend on what.
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod atomic;
 pub mod bake;

@@ -702,7 +702,9 @@ fn writes_leave_a_gitignore_and_hits_record_their_use() {
         .unwrap()
         .modified()
         .unwrap();
-    let e = Cache::new(&dir).get(&s, &mut |_, _| panic!("a hit")).unwrap();
+    let e = Cache::new(&dir)
+        .get(&s, &mut |_, _| panic!("a hit"))
+        .unwrap();
     assert_eq!(e.source, Source::Hit);
     let t = std::fs::metadata(&used).unwrap().modified().unwrap();
     assert!(t > old, "the hit was not recorded");
@@ -713,7 +715,10 @@ fn writes_leave_a_gitignore_and_hits_record_their_use() {
             .unwrap(),
         entry_time
     );
-    assert_eq!(std::fs::read_to_string(dir.join(".gitignore")).unwrap(), "mine\n");
+    assert_eq!(
+        std::fs::read_to_string(dir.join(".gitignore")).unwrap(),
+        "mine\n"
+    );
 }
 
 /// `tidy::list` checks entries without their specs: valid, stale (keyed for an older
@@ -723,7 +728,10 @@ fn writes_leave_a_gitignore_and_hits_record_their_use() {
 fn tidy_lists_verifies_and_prunes() {
     use build_assets::cache::tidy::{self, Prune, Status};
     let dir = tmp("prune");
-    let (a, b) = (spec(STBN), spec("kind = \"white\"\ndims = [8, 8]\nseed = 2"));
+    let (a, b) = (
+        spec(STBN),
+        spec("kind = \"white\"\ndims = [8, 8]\nseed = 2"),
+    );
     let mut c = Cache::new(&dir);
     c.get(&a, &mut |_, _| {}).unwrap();
     c.get(&b, &mut |_, _| {}).unwrap();
@@ -783,7 +791,14 @@ fn tidy_lists_verifies_and_prunes() {
     };
     assert_eq!(tidy::prune(&dir, some).unwrap().len(), 2);
     assert_eq!(tidy::list(&dir).unwrap().len(), 3);
-    let gone = tidy::prune(&dir, Prune { dry_run: false, ..some }).unwrap();
+    let gone = tidy::prune(
+        &dir,
+        Prune {
+            dry_run: false,
+            ..some
+        },
+    )
+    .unwrap();
     assert_eq!(gone.len(), 2);
     let left = tidy::list(&dir).unwrap();
     assert_eq!(left.len(), 1);

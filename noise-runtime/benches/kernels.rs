@@ -119,13 +119,17 @@ fn main() {
         (
             "fbm3 batch",
             fastest_batch(&pts, &xis, |p, _, o| {
-                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample_batch(p, o).unwrap();
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1)
+                    .sample_batch(p, o)
+                    .unwrap();
             }),
         ),
         (
             "fbm3 estimate batch",
             fastest_batch(&pts, &xis, |p, x, o| {
-                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).estimate_batch(p, x, o).unwrap();
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1)
+                    .estimate_batch(p, x, o)
+                    .unwrap();
             }),
         ),
     ] {

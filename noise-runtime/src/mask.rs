@@ -218,7 +218,14 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, 
     /// Channel 0 of [`get_k`](Self::get_k) normalised to `[0, 1)`.
     #[must_use]
     #[inline(always)]
-    pub fn get_k_unit(&self, x: impl Coord, y: impl Coord, z: impl Coord, w: impl Coord, k: u32) -> f32 {
+    pub fn get_k_unit(
+        &self,
+        x: impl Coord,
+        y: impl Coord,
+        z: impl Coord,
+        w: impl Coord,
+        k: u32,
+    ) -> f32 {
         self.get_k(x, y, z, w, k).unit(0)
     }
 
@@ -226,7 +233,14 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, 
     /// (as [`Mask3::get_pair_unit`]).
     #[must_use]
     #[inline(always)]
-    pub fn get_pair_unit(&self, x: impl Coord, y: impl Coord, z: impl Coord, w: impl Coord, k: u32) -> [f32; 2] {
+    pub fn get_pair_unit(
+        &self,
+        x: impl Coord,
+        y: impl Coord,
+        z: impl Coord,
+        w: impl Coord,
+        k: u32,
+    ) -> [f32; 2] {
         let k2 = k.wrapping_mul(2);
         [
             self.get_k_unit(x, y, z, w, k2),
@@ -239,7 +253,7 @@ impl<T: Texel, const W: u32, const H: u32, const D: u32, const E: u32> Mask4<T, 
 /// one mip level. A 2D mask is one layer; a 3D mask one layer per time slice; a 4D mask
 /// `(x, y, z, w)` is flattened layer-major, layer `z + D·w` (the bytes' own order). In WGSL
 /// bind it as `texture_2d_array<f32>` (unorm and float formats) or `texture_2d_array<u32>`
-/// (`r16uint`…) and read it with `textureLoad`, as `shaders/noisebake.wgsl` does.
+/// (`r16uint`…) and read it with `textureLoad`, as `noise-runtime/wgsl/noisebake.wgsl` does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GpuTexture {
     /// Texels per row.

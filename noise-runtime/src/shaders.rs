@@ -1,6 +1,6 @@
 //! The runtime's functions in WGSL, for games that sample noise on the GPU.
 //!
-//! [`WGSL`] is `shaders/noisebake.wgsl`: plain WGSL (no preprocessor, no bindings of its own),
+//! [`WGSL`] is `noise-runtime/wgsl/noisebake.wgsl`: plain WGSL (no preprocessor, no bindings of its own),
 //! so it can be prepended to a wgpu shader module or loaded as a Bevy shader library. Every
 //! function is prefixed `nb_` and computes what the runtime function of the same name does:
 //!
@@ -46,5 +46,5 @@
 //! assert!(source.contains("fn nb_perlin3"));
 //! ```
 
-/// The WGSL library (`shaders/noisebake.wgsl`).
-pub const WGSL: &str = include_str!("../../shaders/noisebake.wgsl");
+/// The WGSL library (`noise-runtime/wgsl/noisebake.wgsl`).
+pub const WGSL: &str = include_str!("../wgsl/noisebake.wgsl");

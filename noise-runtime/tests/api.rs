@@ -49,9 +49,15 @@ fn mask_coordinates_mix_integer_types() {
                 let (yi, fi) = (y as i32, frame as i32);
                 assert_eq!(m3.get(x, y, frame), m3.get(x, yi, fi));
                 assert_eq!(m3.get_unit(x, y as u16, frame), m3.get_unit(x, yi, fi));
-                assert_eq!(m3.threshold(x, yi, frame, 0.4), m3.threshold(x, yi, fi, 0.4));
+                assert_eq!(
+                    m3.threshold(x, yi, frame, 0.4),
+                    m3.threshold(x, yi, fi, 0.4)
+                );
                 assert_eq!(m3.get_k_unit(x, yi, frame, 3), m3.get_k_unit(x, yi, fi, 3));
-                assert_eq!(m3.get_pair_unit(x, y, frame, 1), m3.get_pair_unit(x, yi, fi, 1));
+                assert_eq!(
+                    m3.get_pair_unit(x, y, frame, 1),
+                    m3.get_pair_unit(x, yi, fi, 1)
+                );
                 assert_eq!(
                     m4.get_k(x, y as u64, frame, -1i64, 2),
                     m4.get_k(x, yi, fi, -1, 2)

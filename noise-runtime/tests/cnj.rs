@@ -201,9 +201,18 @@ fn huge_and_odd_inputs_never_give_nan() {
         (d.with_scale(0.0), "cell size"),
         (d.with_scale(f32::NAN), "cell size"),
         (d.with_time(f32::INFINITY), "time"),
-        (d.with_spacing(-1.0), "spacing must be finite and positive, got -1"),
-        (d.with_spacing(0.0), "spacing must be finite and positive, got 0"),
-        (d.with_integrator(Integrator::Euler).with_steps(1000), "steps"),
+        (
+            d.with_spacing(-1.0),
+            "spacing must be finite and positive, got -1",
+        ),
+        (
+            d.with_spacing(0.0),
+            "spacing must be finite and positive, got 0",
+        ),
+        (
+            d.with_integrator(Integrator::Euler).with_steps(1000),
+            "steps",
+        ),
     ] {
         let e = bad.unwrap_err().to_string();
         assert!(e.contains(what), "{e}");

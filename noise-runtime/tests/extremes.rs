@@ -151,7 +151,8 @@ fn cnj_queries_are_total_and_bounded() {
         c2.with_time(0.0).unwrap(),
         c2.with_time(f32::MAX).unwrap(),
         c2.with_time(-f32::MAX).unwrap(),
-        c2.with_scale(noise_runtime::cnj::MIN_SCALE as f32 * 1.01).unwrap(),
+        c2.with_scale(noise_runtime::cnj::MIN_SCALE as f32 * 1.01)
+            .unwrap(),
         c2.with_scale(f32::MAX).unwrap(),
         c2.with_spacing(1e-30).unwrap(),
         c2.with_spacing(f32::MAX).unwrap(),
@@ -210,7 +211,8 @@ fn cnj_queries_are_total_and_bounded() {
         c3,
         c3.with_time(30.0).unwrap(),
         c3.with_time(f32::MAX).unwrap(),
-        c3.with_scale(noise_runtime::cnj::MIN_SCALE as f32 * 1.01).unwrap(),
+        c3.with_scale(noise_runtime::cnj::MIN_SCALE as f32 * 1.01)
+            .unwrap(),
         c3.with_spacing(1e-30).unwrap(),
         c3.with_steps(64).unwrap(),
     ];

@@ -139,7 +139,11 @@ pub fn prune(dir: &Path, what: Prune) -> Result<String, String> {
         );
     }
     let gone = tidy::prune(dir, what).map_err(|e| e.to_string())?;
-    let verb = if what.dry_run { "would remove" } else { "removed" };
+    let verb = if what.dry_run {
+        "would remove"
+    } else {
+        "removed"
+    };
     let bytes: u64 = gone.iter().map(|e| e.bytes).sum();
     let mut out = format!(
         "{}: {verb} {} entries ({})\n",

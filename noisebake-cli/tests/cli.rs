@@ -274,9 +274,28 @@ fn analyze_explains_its_numbers_and_refuses_to_misread_vectors() {
     let stbn = d.join("stbn.npy");
     let vec3 = d.join("vec.npy");
     for (args, out) in [
-        (&["--kind", "stbn", "--dims", "16x16x8", "--histogram", "slice"][..], &stbn),
         (
-            &["--kind", "fast", "--dims", "16x16x4", "--sample_space", "hemisphere", "--format", "u8x3"][..],
+            &[
+                "--kind",
+                "stbn",
+                "--dims",
+                "16x16x8",
+                "--histogram",
+                "slice",
+            ][..],
+            &stbn,
+        ),
+        (
+            &[
+                "--kind",
+                "fast",
+                "--dims",
+                "16x16x4",
+                "--sample_space",
+                "hemisphere",
+                "--format",
+                "u8x3",
+            ][..],
             &vec3,
         ),
     ] {
@@ -337,7 +356,10 @@ fn cache_commands_list_verify_and_prune() {
     assert!(ok, "{err}");
     let (ok, out, err) = noisebake(&["cache", "list", "--cache-dir", c]);
     assert!(ok, "{err}");
-    assert!(out.contains("2 entries") && out.contains("kind=blue2d"), "{out}");
+    assert!(
+        out.contains("2 entries") && out.contains("kind=blue2d"),
+        "{out}"
+    );
     assert!(out.contains("valid") && out.contains("s ago"), "{out}");
     let (ok, out, _) = noisebake(&["cache", "verify", "--cache-dir", c]);
     assert!(ok && out.contains("2 valid, 0 stale, 0 corrupt"), "{out}");
@@ -352,7 +374,10 @@ fn cache_commands_list_verify_and_prune() {
     std::fs::write(&entry, &bytes).unwrap();
     let (ok, out, err) = noisebake(&["cache", "verify", "--cache-dir", c]);
     assert!(!ok, "{out}");
-    assert!(out.contains("CORRUPT: truncated") && err.contains("corrupt"), "{out}{err}");
+    assert!(
+        out.contains("CORRUPT: truncated") && err.contains("corrupt"),
+        "{out}{err}"
+    );
     assert!(entry.exists(), "verify deleted an entry");
 
     let (ok, _, err) = noisebake(&["cache", "prune", "--cache-dir", c]);
@@ -361,7 +386,10 @@ fn cache_commands_list_verify_and_prune() {
     assert!(!ok && err.contains("date +%s"), "{err}");
     let (ok, out, err) = noisebake(&["cache", "prune", "--cache-dir", c, "--corrupt"]);
     assert!(ok, "{err}");
-    assert!(out.contains("removed 1 entries") && !entry.exists(), "{out}");
+    assert!(
+        out.contains("removed 1 entries") && !entry.exists(),
+        "{out}"
+    );
     // Everything was used moments ago: an hour's cut-off keeps the rest.
     let (ok, out, _) = noisebake(&["cache", "prune", "--cache-dir", c, "--unused-since", "1h"]);
     assert!(ok && out.contains("removed 0 entries"), "{out}");

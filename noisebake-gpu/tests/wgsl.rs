@@ -1,4 +1,4 @@
-//! Every function of `shaders/noisebake.wgsl` run on a GPU (a Vulkan device through wgpu;
+//! Every function of `noise-runtime/wgsl/noisebake.wgsl` run on a GPU (a Vulkan device through wgpu;
 //! lavapipe in CI) and compared with the Rust runtime on a few hundred thousand inputs: integer
 //! paths bit for bit, unorm loads within one ulp, floating-point paths within the tolerances
 //! `noise_runtime::shaders` documents.

@@ -53,7 +53,13 @@ pub(super) fn ensure_gitignore(dir: &Path) {
 pub(super) fn record_use(dir: &Path, key: &str) {
     let used = dir.join(USED_DIR);
     let path = used.join(key);
-    let open = || File::options().create(true).truncate(false).write(true).open(&path);
+    let open = || {
+        File::options()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&path)
+    };
     let file = match open() {
         Ok(f) => f,
         Err(e) if e.kind() == io::ErrorKind::NotFound => {
@@ -134,7 +140,10 @@ pub fn check(key: &str, bytes: &[u8]) -> (Option<String>, Status) {
             Status::Corrupt("its spec is not UTF-8 text".to_string()),
         );
     };
-    let this = format!("{:032x}", fnv128(format!("v{ALGORITHM_VERSION};{canon}").as_bytes()));
+    let this = format!(
+        "{:032x}",
+        fnv128(format!("v{ALGORITHM_VERSION};{canon}").as_bytes())
+    );
     let status = if this == key {
         Status::Valid
     } else if (0..ALGORITHM_VERSION)

@@ -5,6 +5,7 @@
 pub mod ktx2;
 pub mod npy;
 #[cfg(feature = "png")]
+#[cfg_attr(docsrs, doc(cfg(feature = "png")))]
 pub mod png;
 
 use std::io;

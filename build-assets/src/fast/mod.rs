@@ -31,6 +31,7 @@
 pub mod filter;
 pub mod optimize;
 #[cfg(feature = "research")]
+#[cfg_attr(docsrs, doc(cfg(feature = "research")))]
 pub mod paper;
 pub mod space;
 
@@ -229,6 +230,7 @@ pub fn generate_within(
 /// Runs the paper's own schedule ([`paper`]) from the same stratified start as
 /// [`generate_within`] (a baseline for reports; baking never uses it).
 #[cfg(feature = "research")]
+#[cfg_attr(docsrs, doc(cfg(feature = "research")))]
 pub fn paper_baseline(
     params: &FastParams,
     dims: &[usize],

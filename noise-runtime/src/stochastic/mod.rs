@@ -119,4 +119,3 @@ pub use noises::{
     SparseConvolutionFbm, Worley,
 };
 pub use voronoi::SMOOTH_VORONOI_Q;
-

@@ -27,7 +27,6 @@ mod sealed {
     impl Sealed for [f32; 4] {}
 }
 
-
 /// The error of a batch call whose slices differ in length: one output per point (and one ξ
 /// per point for an estimator) is the contract, and a silent shortest-slice run would hide a
 /// caller's off-by-one. Nothing is written.

@@ -63,16 +63,30 @@ pub struct Table {
     pub rows: Vec<Row>,
 }
 
-/// The path of EA's FAST texture in the repository.
-pub fn ea_path() -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../testdata/ea-fast-bsd3/real_uniform_gauss_1.3435_exponential_0.1_0.1_product.png")
+/// The file name of EA's published FAST texture (BSD-3-Clause, vendored in the repository's
+/// `testdata/ea-fast-bsd3/` with its licence; not shipped with the crate).
+pub const EA_FILE: &str = "real_uniform_gauss_1.3435_exponential_0.1_0.1_product.png";
+
+/// Where EA's FAST texture is: `NOISEBAKE_EA_TEXTURE` (the PNG), else the repository's
+/// `testdata/` when this binary was built from a checkout. `None` for an installed binary
+/// without the variable: the report then leaves EA's row out and says why.
+pub fn ea_path() -> Option<std::path::PathBuf> {
+    if let Some(p) = std::env::var_os("NOISEBAKE_EA_TEXTURE").filter(|p| !p.is_empty()) {
+        return Some(p.into());
+    }
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../testdata/ea-fast-bsd3")
+        .join(EA_FILE);
+    p.is_file().then_some(p)
 }
 
-/// EA's texture as values `(v + 0.5) / 256`, x fastest, 128 × 128 × 64.
-pub fn ea_values() -> Result<Vec<f64>, String> {
-    let img = image::open(ea_path())
-        .map_err(|e| format!("{}: {e}", ea_path().display()))?
+/// Why EA's row is missing, for the report to print.
+pub const EA_MISSING: &str = "EA's published FAST texture is not here (it is reference data of the repository, not shipped with the crate): set NOISEBAKE_EA_TEXTURE to its PNG (testdata/ea-fast-bsd3/ in a checkout) to add its row";
+
+/// EA's texture at `path` as values `(v + 0.5) / 256`, x fastest, 128 × 128 × 64.
+pub fn ea_values(path: &Path) -> Result<Vec<f64>, String> {
+    let img = image::open(path)
+        .map_err(|e| format!("{}: {e}", path.display()))?
         .to_rgba8();
     if img.dimensions() != (128, 128 * 64) {
         return Err(format!(
@@ -239,7 +253,10 @@ pub fn table(dims: [usize; 3], log: &mut dyn FnMut(&str)) -> Result<Table, Strin
         log,
     )?);
     if dims == [128, 128, 64] {
-        rows.push(measure("FAST (EA, published)", &ea_values()?, dims, &fp));
+        match ea_path() {
+            Some(p) => rows.push(measure("FAST (EA, published)", &ea_values(&p)?, dims, &fp)),
+            None => log(&format!("  {EA_MISSING}")),
+        }
     }
     rows.push(baked(
         "STBN (ours, slice histograms)",

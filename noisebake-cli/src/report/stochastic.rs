@@ -598,10 +598,14 @@ fn batch_rows(
             "fbm3",
             |p, _| Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample(p),
             |p, _, o| {
-                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).sample_batch(p, o).unwrap();
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1)
+                    .sample_batch(p, o)
+                    .unwrap();
             },
             |p, x, o| {
-                Fbm::new(Fractal::new(10, 2.0, 0.5), 1).estimate_batch(p, x, o).unwrap();
+                Fbm::new(Fractal::new(10, 2.0, 0.5), 1)
+                    .estimate_batch(p, x, o)
+                    .unwrap();
             },
         ),
     ];
