@@ -13,6 +13,10 @@ const SPECS: &[&str] = &[
     "kind = \"independent2d\"\ndims = [16, 16, 4]\nseed = 2",
     "kind = \"golden\"\ndims = [16, 16, 4]\nseed = 2\nformat = \"u16\"",
     "kind = \"white\"\ndims = [16, 16, 4]\nseed = 2",
+    // EA's history rejection (β 0.1), the default before 0.1.0: these keep their digests.
+    "kind = \"fast\"\ndims = [16, 16, 4]\nseed = 5\nformat = \"u16\"\niterations = 4\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }",
+    "kind = \"fast\"\ndims = [16, 16, 2]\nseed = 5\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 3 }\niterations = 3\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }",
+    // The default temporal filter, the plain EMA (β 0).
     "kind = \"fast\"\ndims = [16, 16, 4]\nseed = 5\nformat = \"u16\"\niterations = 4",
     "kind = \"fast\"\ndims = [16, 16, 2]\nseed = 5\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 3 }\niterations = 3",
 ];
@@ -52,7 +56,7 @@ fn output_matches_the_golden_digests() {
     );
 }
 
-const GOLDEN: [u64; 8] = [
+const GOLDEN: [u64; 10] = [
     0x02bcc607887f687d,
     0xcb5fdf9617060b15,
     0x893f58b1ed87e261,
@@ -61,4 +65,6 @@ const GOLDEN: [u64; 8] = [
     0x678bc41f284dccd3,
     0xb46763619e63402d,
     0x88bfe38174830359,
+    0x98e6519cae556745,
+    0x759878f1c58250b7,
 ];

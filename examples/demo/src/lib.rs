@@ -72,8 +72,55 @@ pub struct Metrics {
     /// RMSE of the final EMA after the same Gaussian blur: spatial + temporal denoising, what
     /// FAST's product masks are optimised for.
     pub denoised: f64,
+    /// Standard error of `denoised` from the spread of the per-pixel squared errors, with the
+    /// blur's footprint (4πσ² ≈ 12.6 pixels) as one independent sample: differences within
+    /// about twice the combined error are ties, not wins.
+    pub denoised_se: f64,
+    /// `(frame, RMSE)` of the EMA after the blur at frames 1, 2, 3, 4, 6, 8, 12, 16, …: the
+    /// verdict's metric as it converges.
+    pub ema_blur: Vec<(usize, f64)>,
     /// Seconds to render all frames.
     pub seconds: f64,
+}
+
+/// The frames at which the EMA + blur curve is sampled: 1, 2, 3, 4, 6, 8, 12, 16, 24, … (and
+/// the last), so the plot has a point per half octave for a blur per point.
+pub fn curve_frames(frames: usize) -> Vec<usize> {
+    let mut out = Vec::new();
+    let mut k = 1;
+    while k < frames {
+        out.push(k);
+        k = if k < 2 || k.is_power_of_two() {
+            k + k.div_ceil(2)
+        } else {
+            k.next_power_of_two()
+        };
+    }
+    out.push(frames);
+    out.dedup();
+    out
+}
+
+/// RMSE and its standard error over pixels, with `footprint` pixels as one independent sample.
+fn rmse_se(a: &[f32], b: &[f32], footprint: f64) -> (f64, f64) {
+    let n = a.len().max(1) as f64;
+    let sq: Vec<f64> = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| ((x - y) as f64).powi(2))
+        .collect();
+    let mse = sq.iter().sum::<f64>() / n;
+    let var = sq.iter().map(|s| (s - mse).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
+    let se_mse = (var * footprint / n).sqrt();
+    let rmse = mse.sqrt();
+    (
+        rmse,
+        if rmse > 0.0 {
+            se_mse / (2.0 * rmse)
+        } else {
+            0.0
+        },
+    )
 }
 
 fn rmse(a: &[f32], b: &[f32]) -> f64 {
@@ -143,6 +190,8 @@ pub fn evaluate(
     let (mut mc, mut em) = (Vec::new(), Vec::new());
     let (mut first, mut mc_img) = (Vec::new(), Vec::new());
     let mut frame = vec![0.0f32; w * h * c];
+    let sampled = curve_frames(cfg.frames);
+    let mut ema_blur = Vec::new();
     for f in 0..cfg.frames {
         render(f as u32, &mut frame);
         for (s, v) in sum.iter_mut().zip(&frame) {
@@ -159,12 +208,17 @@ pub fn evaluate(
         let mean: Vec<f32> = sum.iter().map(|s| (s / (f + 1) as f64) as f32).collect();
         mc.push(rmse(&mean, reference));
         em.push(rmse(&ema, reference));
+        if sampled.contains(&(f + 1)) && f + 1 < cfg.frames {
+            ema_blur.push((f + 1, rmse(&blur(&ema, cfg.size, c), ref_blur)));
+        }
         if f + 1 == cfg.mc_frames.min(cfg.frames) {
             mc_img = mean;
         }
     }
     let filtered_1 = rmse(&blur(&first, cfg.size, c), ref_blur);
-    let denoised = rmse(&blur(&ema, cfg.size, c), ref_blur);
+    let footprint = 4.0 * std::f64::consts::PI;
+    let (denoised, denoised_se) = rmse_se(&blur(&ema, cfg.size, c), ref_blur, footprint);
+    ema_blur.push((cfg.frames, denoised));
     (
         Metrics {
             app: app.name(),
@@ -173,6 +227,8 @@ pub fn evaluate(
             mc,
             ema: em,
             denoised,
+            denoised_se,
+            ema_blur,
             seconds: 0.0,
         },
         [first, mc_img, ema],

@@ -35,7 +35,7 @@ pub fn png(path: &Path, img: &[f32], [w, h]: [usize; 2], c: usize) -> Result<(),
 pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let mut html = String::from(
-        "<!doctype html><meta charset=utf-8><title>noisebake demo</title>\n<style>body{font-family:sans-serif;max-width:1400px;margin:auto}img{image-rendering:pixelated;width:192px}td,th{padding:2px 6px;text-align:center;font-size:13px}figure{display:inline-block;margin:4px}</style>\n<h1>noisebake demo</h1>\n<p>Every image is rendered on the CPU with one random number (or direction) per pixel and frame from the named noise; RMSE is against the converged reference. EMA: α = 0.1. Plots: RMSE (log scale) against frames, one line per noise in the order of the table.</p>\n",
+        "<!doctype html><meta charset=utf-8><title>noisebake demo</title>\n<style>body{font-family:sans-serif;max-width:1400px;margin:auto}img{image-rendering:pixelated;width:192px}td,th{padding:2px 6px;text-align:center;font-size:13px}figure{display:inline-block;margin:4px}</style>\n<h1>noisebake demo</h1>\n<p>Every image is rendered on the CPU with one random number (or direction) per pixel and frame from the named noise; RMSE is against the converged reference. EMA: α = 0.1. Plots: RMSE (log axis) against frames, one line per noise; curves that lie on top of each other are named together in the legend. The ± after EMA + blur is the standard error from the per-pixel spread: noises within twice the combined error of the best are tied.</p>\n",
     );
     let mc = cfg.mc_frames.min(cfg.frames);
     for r in results {
@@ -48,8 +48,8 @@ pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), Stri
         )?;
         let _ = write!(
             html,
-            "<h2>{app}</h2><p>{}</p><figure><img src=\"{app}_reference.png\" alt=\"{app}: reference image\"><figcaption>reference</figcaption></figure>\n<table><tr><th>noise</th><th>1 frame</th><th>{mc}-frame average</th><th>{}-frame EMA</th><th>RMSE 1 / filtered 1 / {mc} / EMA {} / EMA+blur</th><th>render s</th></tr>\n",
-            r.caption, cfg.frames, cfg.frames
+            "<h2>{app}</h2><p>{}</p><figure><img src=\"{app}_reference.png\" alt=\"{app}: reference image\"><figcaption>reference</figcaption></figure>\n<table><tr><th>noise</th><th>1 frame</th><th>{mc}-frame average</th><th>{}-frame EMA</th><th>RMSE: 1 frame</th><th>blurred</th><th>{mc}-frame mean</th><th>EMA {}</th><th>EMA {} + blur</th><th>render s</th></tr>\n",
+            r.caption, cfg.frames, cfg.frames, cfg.frames
         );
         for (m, imgs) in &r.runs {
             let n = m.noise.name();
@@ -64,18 +64,23 @@ pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), Stri
             let ema_frames = cfg.frames;
             let _ = writeln!(
                 html,
-                "<tr><td>{n}</td><td><img src=\"{app}_{n}_1.png\" alt=\"{app} with {n}: one frame\"></td><td><img src=\"{app}_{n}_mc.png\" alt=\"{app} with {n}: {mc}-frame average\"></td><td><img src=\"{app}_{n}_ema.png\" alt=\"{app} with {n}: EMA after {ema_frames} frames\"></td><td>{:.4} / {:.4} / {:.4} / {:.4} / {:.4}</td><td>{:.2}</td></tr>",
+                "<tr><td>{n}</td><td><img src=\"{app}_{n}_1.png\" alt=\"{app} with {n}: one frame\"></td><td><img src=\"{app}_{n}_mc.png\" alt=\"{app} with {n}: {mc}-frame average\"></td><td><img src=\"{app}_{n}_ema.png\" alt=\"{app} with {n}: EMA after {ema_frames} frames\"></td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4} ± {:.4}</td><td>{:.2}</td></tr>",
                 m.mc[0],
                 m.filtered_1,
                 m.mc[mc - 1],
                 m.ema[cfg.frames - 1],
                 m.denoised,
+                m.denoised_se,
                 m.seconds
             );
         }
         html += "</table>\n";
         let _ = writeln!(html, "<p><b>{}</b></p>", verdict(r));
-        for (kind, pick) in [("mc", 0usize), ("ema", 1)] {
+        for (kind, title) in [
+            ("mc", "mean of the first k frames"),
+            ("ema", "exponential moving average"),
+            ("ema_blur", "EMA + blur (the verdict's metric)"),
+        ] {
             let series: Vec<Series> = r
                 .runs
                 .iter()
@@ -83,82 +88,85 @@ pub fn write(dir: &Path, cfg: &Config, results: &[AppResult]) -> Result<(), Stri
                 .map(|(i, (m, _))| Series {
                     label: m.noise.name().into(),
                     color: PALETTE[i % PALETTE.len()],
-                    points: (if pick == 0 { &m.mc } else { &m.ema })
-                        .iter()
-                        .enumerate()
-                        .map(|(f, &e)| ((f + 1) as f64, e))
-                        .collect(),
+                    points: match kind {
+                        "mc" => frames_curve(&m.mc),
+                        "ema" => frames_curve(&m.ema),
+                        _ => m.ema_blur.iter().map(|&(f, e)| (f as f64, e)).collect(),
+                    },
                 })
                 .collect();
             let file = format!("{app}_{kind}_convergence.png");
             let labels = Labels {
-                title: format!(
-                    "{app}: {}",
-                    if pick == 0 {
-                        "Monte Carlo average over frames"
-                    } else {
-                        "exponential moving average"
-                    }
-                ),
+                title: format!("{app}: {title}"),
                 x: "frames".into(),
-                y: "RMSE (log scale)".into(),
+                y: "RMSE (log axis)".into(),
             };
             let range = line_plot(&dir.join(&file), &series, &labels, true)?;
-            let legend: Vec<String> = series
-                .iter()
-                .map(|s| {
-                    format!(
-                        "<span style=\"color:rgb({},{},{})\">■ {}</span>",
-                        s.color[0], s.color[1], s.color[2], s.label
-                    )
-                })
-                .collect();
             let _ = writeln!(
                 html,
-                "<figure><img style=\"width:480px\" src=\"{file}\" alt=\"{app}: RMSE against frames, one line per noise\"><figcaption>{} RMSE vs frames {:.0}–{:.0}; log10 RMSE {:.2} … {:.2}<br>{}</figcaption></figure>",
-                if pick == 0 {
-                    "Monte Carlo average:"
-                } else {
-                    "EMA:"
-                },
+                "<figure><img style=\"width:560px\" src=\"{file}\" alt=\"{app}: RMSE of the {title} against frames, one line per noise\"><figcaption>{title}: RMSE {} to {} over frames {:.0}–{:.0}</figcaption></figure>",
+                fmt_rmse(range[2]),
+                fmt_rmse(range[3]),
                 range[0],
                 range[1],
-                range[2],
-                range[3],
-                legend.join(" ")
             );
         }
     }
     write_atomic(&dir.join("index.html"), html.as_bytes()).map_err(|e| format!("index.html: {e}"))
 }
 
+fn frames_curve(v: &[f64]) -> Vec<(f64, f64)> {
+    v.iter()
+        .enumerate()
+        .map(|(f, &e)| ((f + 1) as f64, e))
+        .collect()
+}
+
+fn fmt_rmse(v: f64) -> String {
+    format!("{v:.4}")
+}
+
 /// Prints the per-application, per-noise table.
 pub fn summary(results: &[AppResult], cfg: &Config) {
     let mc = cfg.mc_frames.min(cfg.frames);
+    let frames = cfg.frames;
+    println!("\nRMSE against the converged reference, lower is better (the page's columns):");
     println!(
-        "\n{:<13} {:<14} {:>9} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}",
+        "  1 frame: one frame as rendered; blurred: that frame after a Gaussian blur of σ 1 px"
+    );
+    println!(
+        "  (both it and the reference, as a spatial denoiser sees it); {mc}-frame mean: the average of the"
+    );
+    println!(
+        "  first {mc} frames; EMA {frames}: an exponential moving average (α {}) after {frames} frames;",
+        crate::EMA_ALPHA
+    );
+    println!(
+        "  EMA {frames} + blur: that EMA after the same blur, the verdict's metric (± its standard error)."
+    );
+    println!(
+        "\n{:<13} {:<14} {:>9} {:>9} {:>9} {:>9} {:>18} {:>9}",
         "application",
         "noise",
-        "rmse@1",
-        "filtered@1",
-        "mc@4",
-        format!("mc@{mc}"),
-        format!("ema@{}", cfg.frames),
-        "ema+blur",
+        "1 frame",
+        "blurred",
+        format!("{mc}-mean"),
+        format!("EMA {frames}"),
+        format!("EMA {frames} + blur"),
         "render s"
     );
     for r in results {
         for (m, _) in &r.runs {
             println!(
-                "{:<13} {:<14} {:>9.4} {:>10.4} {:>9.4} {:>9.4} {:>9.4} {:>10.4} {:>9.2}",
+                "{:<13} {:<14} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>10.4} ± {:.4} {:>9.2}",
                 r.name,
                 m.noise.name(),
                 m.mc[0],
                 m.filtered_1,
-                m.mc[3.min(m.mc.len() - 1)],
                 m.mc[mc - 1],
                 m.ema[cfg.frames - 1],
                 m.denoised,
+                m.denoised_se,
                 m.seconds
             );
         }
@@ -170,9 +178,15 @@ pub fn summary(results: &[AppResult], cfg: &Config) {
     }
 }
 
-/// Which noise leaves the least error in an application after EMA + blur, and where a free
-/// hash (IGN, R2: one line of shader code, no texture) is within 5 % of the best mask: from
-/// this run's numbers.
+/// Whether `a` and `b` are tied after EMA + blur: their difference is within twice its
+/// standard error (from the per-pixel spread, [`Metrics::denoised_se`]).
+pub fn tied(a: &crate::Metrics, b: &crate::Metrics) -> bool {
+    (a.denoised - b.denoised).abs() <= 2.0 * a.denoised_se.hypot(b.denoised_se)
+}
+
+/// Which noise leaves the least error in an application after EMA + blur, which others are
+/// tied with it (within twice the standard error of the difference), and whether a free hash
+/// (IGN, R2: one line of shader code, no texture) is as good: from this run's numbers.
 pub fn verdict(r: &AppResult) -> String {
     let best = r
         .runs
@@ -182,6 +196,12 @@ pub fn verdict(r: &AppResult) -> String {
     let Some(best) = best else {
         return String::new();
     };
+    let ties: Vec<&crate::Metrics> = r
+        .runs
+        .iter()
+        .map(|(m, _)| m)
+        .filter(|m| m.noise != best.noise && tied(m, best))
+        .collect();
     let free = r
         .runs
         .iter()
@@ -189,13 +209,23 @@ pub fn verdict(r: &AppResult) -> String {
         .filter(|m| m.noise.is_free_hash())
         .min_by(|a, b| a.denoised.total_cmp(&b.denoised));
     let mut s = format!(
-        "least error after EMA + blur: {} ({:.4})",
+        "least error after EMA + blur: {} ({:.4} ± {:.4})",
         best.noise.name(),
-        best.denoised
+        best.denoised,
+        best.denoised_se
     );
+    if !ties.is_empty() {
+        let names: Vec<&str> = ties.iter().map(|m| m.noise.name()).collect();
+        s += &format!(
+            ", tied within twice the standard error with {}",
+            names.join(", ")
+        );
+    }
     if let Some(f) = free {
         if best.noise.is_free_hash() {
             s += "; a free hash wins here: no texture needed";
+        } else if tied(f, best) {
+            s += &format!("; {} ties it and needs no texture", f.noise.name());
         } else if f.denoised <= 1.05 * best.denoised {
             s += &format!(
                 "; {} ({:.4}) is within 5 % and needs no texture",

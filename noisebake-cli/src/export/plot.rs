@@ -44,8 +44,58 @@ pub const PALETTE: [[u8; 3]; 10] = [
     [188, 189, 34],
 ];
 
-/// Width and height of every plot, in pixels.
-pub const SIZE: (u32, u32) = (800, 500);
+/// Width and height of every plot, in pixels (the legend takes [`LEGEND_WIDTH`] on the right).
+pub const SIZE: (u32, u32) = (960, 500);
+
+/// The legend's column beside the chart, so it never covers a curve.
+pub const LEGEND_WIDTH: u32 = 230;
+
+/// Tick values for a log axis over `[lo, hi]`: the 1-2-5 sequence of each decade, or every
+/// mantissa 1–9 when the range spans less than a decade and a half, so even a narrow range
+/// gets several numbered ticks; ticks closer than `min_gap` of a decade are dropped (no label
+/// over another).
+pub fn log_ticks(lo: f64, hi: f64, min_gap: f64) -> Vec<f64> {
+    if !(lo > 0.0 && hi > lo && lo.is_finite() && hi.is_finite()) {
+        return Vec::new();
+    }
+    let span = (hi / lo).log10();
+    let mantissas: &[f64] = if span < 1.5 {
+        &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]
+    } else {
+        &[1.0, 2.0, 5.0]
+    };
+    let mut out: Vec<f64> = Vec::new();
+    let (d0, d1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    for d in d0..=d1 {
+        for &m in mantissas {
+            let v = m * 10f64.powi(d);
+            if v >= lo * (1.0 - 1e-9) && v <= hi * (1.0 + 1e-9) {
+                let far = out.last().is_none_or(|&p| (v / p).log10() >= min_gap);
+                if far {
+                    out.push(v);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// For each series, the earlier series it lies on (every shared x within 1 % in y), so the
+/// legend can say which lines are hidden under which.
+pub fn coinciding(series: &[Series]) -> Vec<Option<usize>> {
+    (0..series.len())
+        .map(|j| {
+            (0..j).find(|&i| {
+                let (a, b) = (&series[i].points, &series[j].points);
+                a.len() == b.len()
+                    && !a.is_empty()
+                    && a.iter().zip(b).all(|(p, q)| {
+                        p.0 == q.0 && (p.1 - q.1).abs() <= 0.01 * p.1.abs().max(q.1.abs())
+                    })
+            })
+        })
+        .collect()
+}
 
 const FONT: &str = "sans-serif";
 
@@ -134,6 +184,33 @@ fn number(v: f64) -> String {
 
 type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
 
+/// The legend column: each series' colour, marker and name; a series lying on an earlier one
+/// says so (`= IGN`), so a reader counting lines knows why fewer are visible.
+fn legend(area: &Area<'_>, series: &[Series]) -> Result<(), Box<dyn std::error::Error>> {
+    let under = coinciding(series);
+    let top = 50;
+    for (i, s) in series.iter().enumerate() {
+        let y = top + 22 * i as i32;
+        let c = RGBColor(s.color[0], s.color[1], s.color[2]);
+        area.draw(&PathElement::new(vec![(8, y), (34, y)], c.stroke_width(2)))?;
+        match i % 3 {
+            0 => area.draw(&Circle::new((21, y), 3, c.filled()))?,
+            1 => area.draw(&TriangleMarker::new((21, y), 4, c.filled()))?,
+            _ => area.draw(&Cross::new((21, y), 4, c.stroke_width(2)))?,
+        }
+        let name = match under[i] {
+            Some(j) => format!("{} (= {})", s.label, series[j].label),
+            None => s.label.clone(),
+        };
+        area.draw(&Text::new(
+            name,
+            (42, y - 8),
+            (FONT, 14).into_font().color(&BLACK),
+        ))?;
+    }
+    Ok(())
+}
+
 fn draw(
     root: &Area<'_>,
     series: &[Series],
@@ -142,7 +219,9 @@ fn draw(
     [x0, x1, y0, y1]: [f64; 4],
 ) -> Result<(), Box<dyn std::error::Error>> {
     root.fill(&WHITE)?;
-    let mut builder = ChartBuilder::on(root);
+    let (plot_area, legend_area) = root.split_horizontally(SIZE.0 - LEGEND_WIDTH);
+    legend(&legend_area, series)?;
+    let mut builder = ChartBuilder::on(&plot_area);
     builder
         .caption(&labels.title, (FONT, 20))
         .margin(12)
@@ -175,12 +254,7 @@ fn draw(
                     .collect();
                 let every = (pts.len() / 12).max(1);
                 let marks: Vec<(f64, f64)> = pts.iter().copied().step_by(every).collect();
-                chart
-                    .draw_series(LineSeries::new(pts, c.stroke_width(2)))?
-                    .label(&s.label)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
-                    });
+                chart.draw_series(LineSeries::new(pts, c.stroke_width(2)))?;
                 match i % 3 {
                     0 => {
                         chart.draw_series(marks.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
@@ -197,17 +271,13 @@ fn draw(
                     }
                 }
             }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font((FONT, 14))
-                .position(SeriesLabelPosition::UpperRight)
-                .draw()?;
         }};
     }
     if log_y {
-        body!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?);
+        // A little room above and below, and numbered ticks a reader can read values off.
+        let (lo, hi) = (y0 / 1.12, y1 * 1.12);
+        let ticks = log_ticks(lo, hi, 0.06);
+        body!(builder.build_cartesian_2d(x0..x1, (lo..hi).log_scale().with_key_points(ticks))?);
     } else {
         let pad = (y1 - y0) * 0.05;
         body!(builder.build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))?);
