@@ -191,7 +191,8 @@ fn paper_run(
     run
 }
 
-/// The scalar case: Gaussian σ 1.3435 × EMA (α 0.1, β 0.1), product.
+/// EA's published scalar texture's filter: Gaussian σ 1.3435 × EMA (α 0.1) with history
+/// rejection β 0.1 (eq. 17), product; the report times the optimiser on it.
 pub fn scalar_params(combine: Combine) -> FastParams {
     FastParams {
         sample_space: SampleSpace::Scalar,
