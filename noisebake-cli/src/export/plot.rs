@@ -50,33 +50,37 @@ pub const SIZE: (u32, u32) = (960, 500);
 /// The legend's column beside the chart, so it never covers a curve.
 pub const LEGEND_WIDTH: u32 = 230;
 
-/// Tick values for a log axis over `[lo, hi]`: the 1-2-5 sequence of each decade, or every
-/// mantissa 1–9 when the range spans less than a decade and a half, so even a narrow range
-/// gets several numbered ticks; ticks closer than `min_gap` of a decade are dropped (no label
-/// over another).
+/// Tick values for a log axis over `[lo, hi]`: every 1-2-5 value of each decade in range, then
+/// the other mantissas (3, 4, 6, 7, 8, 9) where they stand at least `min_gap` decades from every
+/// tick already chosen, so a narrow range still gets several numbered ticks and no label sits
+/// over another. A range too narrow for three such ticks also gets the half mantissas (1.5,
+/// 2.5, …).
 pub fn log_ticks(lo: f64, hi: f64, min_gap: f64) -> Vec<f64> {
     if !(lo > 0.0 && hi > lo && lo.is_finite() && hi.is_finite()) {
         return Vec::new();
     }
-    let span = (hi / lo).log10();
-    let mantissas: &[f64] = if span < 1.5 {
-        &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]
-    } else {
-        &[1.0, 2.0, 5.0]
-    };
-    let mut out: Vec<f64> = Vec::new();
     let (d0, d1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
-    for d in d0..=d1 {
-        for &m in mantissas {
-            let v = m * 10f64.powi(d);
-            if v >= lo * (1.0 - 1e-9) && v <= hi * (1.0 + 1e-9) {
-                let far = out.last().is_none_or(|&p| (v / p).log10() >= min_gap);
-                if far {
+    let in_range = |v: f64| v >= lo * (1.0 - 1e-9) && v <= hi * (1.0 + 1e-9);
+    let mut out: Vec<f64> = Vec::new();
+    let halves = [1.5, 2.5, 3.5, 4.5, 5.5, 6.5, 7.5, 8.5, 9.5];
+    for mantissas in [
+        &[1.0, 2.0, 5.0][..],
+        &[3.0, 4.0, 6.0, 7.0, 8.0, 9.0][..],
+        &halves[..],
+    ] {
+        if mantissas[0] == 1.5 && out.len() >= 3 {
+            break;
+        }
+        for d in d0..=d1 {
+            for &m in mantissas {
+                let v = m * 10f64.powi(d);
+                if in_range(v) && out.iter().all(|&t| (v / t).log10().abs() >= min_gap) {
                     out.push(v);
                 }
             }
         }
     }
+    out.sort_by(f64::total_cmp);
     out
 }
 
@@ -276,7 +280,8 @@ fn draw(
     if log_y {
         // A little room above and below, and numbered ticks a reader can read values off.
         let (lo, hi) = (y0 / 1.12, y1 * 1.12);
-        let ticks = log_ticks(lo, hi, 0.06);
+        // Labels 14 px high need about 20 px between ticks on a plot area of about 400 px.
+        let ticks = log_ticks(lo, hi, 20.0 / 400.0 * (hi / lo).log10());
         body!(builder.build_cartesian_2d(x0..x1, (lo..hi).log_scale().with_key_points(ticks))?);
     } else {
         let pad = (y1 - y0) * 0.05;
@@ -337,5 +342,50 @@ mod tests {
         if std::env::var_os("NOISEBAKE_KEEP_PLOT").is_none() {
             let _ = std::fs::remove_dir_all(dir);
         }
+    }
+}
+
+#[cfg(test)]
+mod tick_tests {
+    use super::*;
+
+    /// A narrow log range gets the 1-2-5 ticks and the mantissas between that fit; a wide one
+    /// only 1-2-5; no two ticks closer than the gap asked for.
+    #[test]
+    fn log_ticks_cover_the_range_without_crowding() {
+        let t = log_ticks(0.05, 0.4, 0.04);
+        for v in [0.05, 0.1, 0.2, 0.06, 0.08, 0.3] {
+            assert!(
+                t.iter().any(|&x| (x - v).abs() < 1e-12),
+                "{v} missing from {t:?}"
+            );
+        }
+        let wide = log_ticks(1e-4, 1.0, 0.2);
+        assert!(
+            wide.contains(&1e-3)
+                && wide.contains(&0.5)
+                && !wide.iter().any(|&x| (x - 0.3).abs() < 1e-12)
+        );
+        for ticks in [t, wide, log_ticks(0.0031, 0.0049, 0.02)] {
+            assert!(ticks.len() >= 2, "{ticks:?}");
+            for w in ticks.windows(2) {
+                assert!(w[1] > w[0]);
+            }
+        }
+        assert!(log_ticks(0.0, 1.0, 0.1).is_empty());
+    }
+
+    /// A series on top of another is named with it; distinct ones are not.
+    #[test]
+    fn coinciding_series_are_found() {
+        let s = |y: f64| Series {
+            label: String::new(),
+            color: [0; 3],
+            points: (1..10).map(|x| (x as f64, y / x as f64)).collect(),
+        };
+        assert_eq!(
+            coinciding(&[s(1.0), s(1.005), s(2.0)]),
+            vec![None, Some(0), None]
+        );
     }
 }
