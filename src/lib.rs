@@ -102,6 +102,26 @@
 //! lookup, grids, hashes, CNJ and Perlin/fBm functions in WGSL, matching the CPU (see
 //! [`shaders`] for how exactly).
 //!
+//! Which `format` to bake for which platform:
+//!
+//! | format | GPU format | native wgpu / Bevy | WebGPU | WebGL2 | three.js (r187 `KTX2Loader`) |
+//! | --- | --- | --- | --- | --- | --- |
+//! | `u8`, `u8x2`, `u8x3`, `u8x4` | `r8unorm`, `rg8unorm`, `rgba8unorm` (3 channels padded to 4) | yes | yes | yes | yes |
+//! | `u16` | `r16uint` (`r16unorm` is native-only) | yes | yes | yes | no: it refuses `R16_UINT`; use `u8` or `f32` |
+//! | `f32`, `f32xN` | `r32float`, `rg32float`, `rgba32float` | yes | yes | yes | yes |
+//!
+//! Every mask is a 2D array texture; WebGL2 guarantees only 256 layers, and three.js reads an
+//! uncompressed KTX2 array as one 2D texture of all layers, so build a `DataArrayTexture`
+//! from the level data there. A mask costs `W × H × layers × bytes per texel` in the binary and
+//! on the GPU: a 64×64×16 `u8` STBN is 64 KiB, a 128×128×64 one 1 MiB (2 MiB as `u16`).
+//!
+//! ## Debug builds
+//!
+//! Lookups and noise functions are `#[inline]` and generic, so they compile into the calling
+//! crate at *its* opt-level; a package override for `noise-runtime` does not reach them. For
+//! debug builds that run at speed, set `[profile.dev] opt-level = 2` (or at least 1) in the
+//! game; the bake itself wants `[profile.dev.package.build-assets] opt-level = 3` (above).
+//!
 //! # Spec keys
 //!
 //! Every texture takes `name` (a Rust identifier; in the macro, the item name), `kind`, `dims`

@@ -49,12 +49,10 @@ pub fn bake(spec: impl AsRef<Path>) -> Result<Report, Error> {
 }
 
 /// Bakes `spec` from a build script and, on failure, reports the error the way Cargo shows a
-/// build script's errors best, then ends the script: the whole of `build.rs` is
+/// build script's errors best, then ends the script: the whole of `build.rs`'s `main` is
 ///
 /// ```no_run
-/// fn main() {
-///     build_assets::bake_or_exit("noise.toml");
-/// }
+/// build_assets::bake_or_exit("noise.toml");
 /// ```
 ///
 /// See [`Bake::run_or_exit`].

@@ -224,7 +224,6 @@ pub(super) fn parse(
 type Entries<'a> = &'a [(Spanned<String>, Spanned<Value>)];
 
 /// Reads the `kind` of a filter table and checks that only `allowed` other keys appear.
-
 fn filter_table<'a>(key: &str, v: &'a Spanned<Value>) -> Result<(&'a str, Entries<'a>), SpecError> {
     let Value::Table(t) = &v.value else {
         return Err(type_error(

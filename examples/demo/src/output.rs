@@ -179,7 +179,7 @@ pub fn summary(results: &[AppResult], cfg: &Config) {
 }
 
 /// Whether `a` and `b` are tied after EMA + blur: their difference is within twice its
-/// standard error (from the per-pixel spread, [`Metrics::denoised_se`]).
+/// standard error (from the per-pixel spread, [`Metrics::denoised_se`](crate::Metrics::denoised_se)).
 pub fn tied(a: &crate::Metrics, b: &crate::Metrics) -> bool {
     (a.denoised - b.denoised).abs() <= 2.0 * a.denoised_se.hypot(b.denoised_se)
 }

@@ -28,7 +28,7 @@ pub enum Potential3 {
 /// Curl-noise jittering of a 3D lattice. Lengths are in units of the cube edge `spacing`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 ///
-/// Built from [`Default`] with the checked setters, as [`Cnj2`]; `|t|` is clamped at query
+/// Built from [`Default`] with the checked setters, as [`Cnj2`](super::Cnj2); `|t|` is clamped at query
 /// time so that no site moves more than [`MAX_REACH`] cube edges.
 pub struct Cnj3 {
     t: f32,

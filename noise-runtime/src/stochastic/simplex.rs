@@ -180,7 +180,7 @@ fn grad4(c: [i32; 4], seed: u32) -> [f32; 4] {
     *gradients::edge4(lattice_hash(c, seed))
 }
 
-/// 2D simplex noise, in `[-1, 1]`: three corners instead of [`perlin2`](super::perlin2)'s
+/// 2D simplex noise, in `[-1, 1]`: three corners instead of [`perlin2`](super::perlin::perlin2)'s
 /// four, and no axis-aligned grid in its look. On a CPU it takes about twice as long as
 /// `perlin2` all the same (`noisebake report`): the skew, the unskew and the corners' weights
 /// are a longer chain of dependent steps than Perlin's fade, and the chain is the time. (A
@@ -214,7 +214,7 @@ pub fn simplex3_grad(p: [f32; 3], seed: u32) -> (f32, [f32; 3]) {
     Corners::<3, 4>::new(p, SKEW3).value_grad(SCALE, |c| grad3(c, seed))
 }
 
-/// 4D simplex noise, in `[-1, 1]`: five corners instead of [`perlin4`](super::perlin4)'s 16.
+/// 4D simplex noise, in `[-1, 1]`: five corners instead of [`perlin4`](super::perlin::perlin4)'s 16.
 #[inline(always)]
 pub fn simplex4(p: [f32; 4], seed: u32) -> f32 {
     lanes::simplex4(p, seed)

@@ -82,7 +82,7 @@ fn gradient_dot<L: Lanes8>(cpu: L, h: &U8, dx: &F8, dy: &F8, dz: &F8) -> F8 {
     v
 }
 
-/// [`perlin3`](super::super::perlin3) of eight points in the split range: the lane form's
+/// [`perlin3`](super::super::perlin::perlin3) of eight points in the split range: the lane form's
 /// (`perlin::lanes::perlin3_cell`) products and sums, lane by lane.
 #[inline(always)]
 fn perlin3_lanes<L: Lanes8>(cpu: L, p: &[F8; 3], seed: u32) -> F8 {
@@ -145,7 +145,7 @@ fn edge<L: Lanes8>(
     a
 }
 
-/// [`perlin3_stochastic`](super::super::perlin3_stochastic) of eight points in the split
+/// [`perlin3_stochastic`](super::super::perlin::perlin3_stochastic) of eight points in the split
 /// range, each with its own seed and ξ: the fixed-point corner choice of
 /// `estimators::Narrowing`, lane by lane (`perlin::lanes::perlin3_stochastic_cell`). `UNIT`:
 /// every ξ is known to lie in `[0, 1)` (a remapped one), where sanitising changes nothing
