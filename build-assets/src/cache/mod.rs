@@ -557,6 +557,28 @@ pub fn encode(t: &Texture, spec: &TextureSpec) -> Vec<u8> {
 /// Verifies an entry's bytes against `spec` and returns its texture. Every header field is
 /// checked, lengths with checked arithmetic, before any is used to slice.
 pub fn decode(bytes: &[u8], spec: &TextureSpec) -> Result<Texture, Corrupt> {
+    let (data, canon) = split(bytes)?;
+    if canon != spec.canonical().as_bytes() {
+        return Err(Corrupt::OtherSpec);
+    }
+    if data.len() != spec.byte_len() {
+        return Err(Corrupt::DataLength {
+            held: data.len() as u64,
+            needed: spec.byte_len() as u64,
+        });
+    }
+    Ok(Texture {
+        name: spec.name.clone(),
+        dims: spec.dims.clone(),
+        format: spec.format,
+        data: data.to_vec(),
+    })
+}
+
+/// An entry's texel bytes and canonical spec, after checking its magic, format version,
+/// padding, lengths (with checked arithmetic) and both hashes; nothing is sliced before the
+/// lengths it depends on are checked.
+pub(crate) fn split(bytes: &[u8]) -> Result<(&[u8], &[u8]), Corrupt> {
     if bytes.len() < HEADER || bytes[..6] != MAGIC[..6] {
         return Err(Corrupt::NotAnEntry);
     }
@@ -588,19 +610,5 @@ pub fn decode(bytes: &[u8], spec: &TextureSpec) -> Result<Texture, Corrupt> {
     if fnv64(data) != hash || fnv64(canon) != chash {
         return Err(Corrupt::Hash);
     }
-    if canon != spec.canonical().as_bytes() {
-        return Err(Corrupt::OtherSpec);
-    }
-    if len != spec.byte_len() as u64 {
-        return Err(Corrupt::DataLength {
-            held: len,
-            needed: spec.byte_len() as u64,
-        });
-    }
-    Ok(Texture {
-        name: spec.name.clone(),
-        dims: spec.dims.clone(),
-        format: spec.format,
-        data: data.to_vec(),
-    })
+    Ok((data, canon))
 }

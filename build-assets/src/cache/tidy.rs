@@ -19,7 +19,7 @@
 //!   this generator's (another [`ALGORITHM_VERSION`]) is stale — valid, but no build of this
 //!   version reads it.
 
-use super::{Corrupt, HEADER, MAGIC, fnv64, fnv128};
+use super::{Corrupt, fnv128};
 use crate::generate::ALGORITHM_VERSION;
 use std::fs::{self, File};
 use std::io;
@@ -107,33 +107,12 @@ pub struct Listed {
 /// Checks an entry's bytes without its spec: the header, lengths and both hashes, then the key
 /// recomputed from the canonical spec it holds. Returns the spec text and the status.
 pub fn check(key: &str, bytes: &[u8]) -> (Option<String>, Status) {
-    let corrupt = |c: Corrupt| (None, Status::Corrupt(c.to_string()));
-    if bytes.len() < HEADER || bytes[..6] != MAGIC[..6] {
-        return corrupt(Corrupt::NotAnEntry);
-    }
-    if bytes[6..8] != MAGIC[6..8] {
+    let canon = match super::split(bytes) {
+        Ok((_, canon)) => canon,
         // Another entry format: intact for its own version, unreadable by this one.
-        return (None, Status::Stale);
-    }
-    let u = |i: usize| u64::from_le_bytes(bytes[i..i + 8].try_into().expect("8 bytes"));
-    let (len, hash, clen, chash) = (u(8), u(16), u(24), u(32));
-    if bytes[40..HEADER].iter().any(|&b| b != 0) {
-        return corrupt(Corrupt::Padding);
-    }
-    let total = (HEADER as u64)
-        .checked_add(len)
-        .and_then(|t| t.checked_add(clen));
-    if total != Some(bytes.len() as u64) {
-        return corrupt(Corrupt::Length {
-            file: bytes.len() as u64,
-            header: total.unwrap_or(u64::MAX),
-        });
-    }
-    let data_end = HEADER + len as usize;
-    let (data, canon) = (&bytes[HEADER..data_end], &bytes[data_end..]);
-    if fnv64(data) != hash || fnv64(canon) != chash {
-        return corrupt(Corrupt::Hash);
-    }
+        Err(Corrupt::Version(_)) => return (None, Status::Stale),
+        Err(c) => return (None, Status::Corrupt(c.to_string())),
+    };
     let Ok(canon) = std::str::from_utf8(canon) else {
         return (
             None,
