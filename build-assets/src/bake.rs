@@ -215,8 +215,8 @@ impl Bake {
                 let e = match cache.lookup(spec) {
                     Some(e) => e,
                     None => {
-                        let est = crate::estimate::estimate(spec);
-                        if est.seconds > crate::estimate::ANNOUNCE_SECONDS {
+                        let est = crate::generate::estimate::estimate(spec);
+                        if est.seconds > crate::generate::estimate::ANNOUNCE_SECONDS {
                             // Shown when the script ends (Cargo holds build-script output),
                             // and on stderr at once for `cargo build -vv`.
                             let line = format!(
@@ -229,7 +229,7 @@ impl Bake {
                             cargo(format!("warning={line}"));
                             announced = true;
                         }
-                        cache.get(spec, &mut |_, _| {})?
+                        cache.get_or_insert_with(spec, || crate::generate(spec, &mut |_, _| {}))?
                     }
                 };
                 if e.source == Source::Generated && start.elapsed().as_secs_f64() > SLOW_SECONDS {

@@ -13,18 +13,15 @@
 
 pub mod atomic;
 pub mod bake;
-pub mod baselines;
 pub mod cache;
 pub mod codegen;
+mod detmath;
+pub mod encoding;
 pub mod error;
-pub mod estimate;
 pub mod export;
-pub mod fast;
 pub mod generate;
-pub mod rng;
 pub mod spec;
 pub mod texture;
-pub mod vac;
 
 pub use bake::{Bake, BakeError, bake, bake_or_exit};
 pub use error::{Error, Warning};

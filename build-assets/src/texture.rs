@@ -1,6 +1,6 @@
 //! A generated texture: dims, format and little-endian bytes (x fastest).
 
-use crate::spec::{Format, decode_unit};
+use crate::encoding::{Format, decode_unit};
 
 /// A generated texture.
 #[derive(Clone, Debug, PartialEq)]

@@ -31,9 +31,13 @@ fn miss_then_hit_with_identical_bytes_and_keys_follow_the_spec() {
     let dir = tmp("hit");
     let s = spec(STBN);
     let mut c = Cache::new(&dir);
-    let first = c.get(&s, &mut |_, _| {}).unwrap();
+    let first = c
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     assert_eq!(first.source, Source::Generated);
-    let second = Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
+    let second = Cache::new(&dir)
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     assert_eq!(second.source, Source::Hit);
     assert_eq!(first.texture.data, second.texture.data);
     assert_eq!(first.texture.data, generate(&s, &mut |_, _| {}).data);
@@ -56,7 +60,9 @@ fn miss_then_hit_with_identical_bytes_and_keys_follow_the_spec() {
 fn truncated_flipped_and_foreign_entries_are_detected_and_regenerated() {
     let dir = tmp("corrupt");
     let s = spec(STBN);
-    let good = Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
+    let good = Cache::new(&dir)
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     let path = good.path.clone().unwrap();
     let bytes = std::fs::read(&path).unwrap();
     let mut flipped = bytes.clone();
@@ -68,7 +74,9 @@ fn truncated_flipped_and_foreign_entries_are_detected_and_regenerated() {
     ] {
         std::fs::write(&path, &bad).unwrap();
         let mut c = Cache::new(&dir);
-        let e = c.get(&s, &mut |_, _| {}).unwrap();
+        let e = c
+            .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+            .unwrap();
         assert_eq!(e.source, Source::Generated, "{what}");
         assert_eq!(e.texture.data, good.texture.data, "{what}");
         assert!(
@@ -92,7 +100,9 @@ fn offline_mode_errors_on_a_miss_and_serves_hits() {
     let s = spec(STBN);
     let mut c = Cache::new(&dir);
     c.offline = true;
-    let e = c.get(&s, &mut |_, _| {}).unwrap_err();
+    let e = c
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap_err();
     assert!(matches!(e, Error::Offline { .. }), "{e}");
     let e = e.to_string();
     assert!(
@@ -100,8 +110,15 @@ fn offline_mode_errors_on_a_miss_and_serves_hits() {
         "{e}"
     );
     assert!(!c.path(&s).exists(), "nothing generated offline");
-    Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
-    assert_eq!(c.get(&s, &mut |_, _| {}).unwrap().source, Source::Hit);
+    Cache::new(&dir)
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
+    assert_eq!(
+        c.get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+            .unwrap()
+            .source,
+        Source::Hit
+    );
 }
 
 #[test]
@@ -111,7 +128,13 @@ fn eight_concurrent_bakes_generate_once_and_all_read_a_complete_entry() {
     let want = generate(&s, &mut |_, _| {}).data;
     let results: Vec<_> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..8)
-            .map(|_| scope.spawn(|| Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap()))
+            .map(|_| {
+                scope.spawn(|| {
+                    Cache::new(&dir)
+                        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+                        .unwrap()
+                })
+            })
             .collect();
         handles.into_iter().map(|h| h.join().unwrap()).collect()
     });
@@ -215,7 +238,9 @@ fn hits_are_served_before_any_write_is_tried() {
     let dir = tmp("readonly_hits");
     let s = spec(STBN);
     let filled = dir.join("filled");
-    Cache::new(&filled).get(&s, &mut |_, _| {}).unwrap();
+    Cache::new(&filled)
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     let stamp = std::fs::metadata(Cache::path_in(&filled, &s))
         .unwrap()
         .modified()
@@ -225,7 +250,9 @@ fn hits_are_served_before_any_write_is_tried() {
     let lock = filled.join(format!("{}.lock", build_assets::cache::key(&s)));
     std::fs::remove_file(&lock).unwrap();
     std::fs::create_dir(&lock).unwrap();
-    let e = c.get(&s, &mut |_, _| panic!("generated on a hit")).unwrap();
+    let e = c
+        .get_or_insert_with(&s, || panic!("generated on a hit"))
+        .unwrap();
     assert_eq!(e.source, Source::Hit);
     assert!(c.warnings.is_empty(), "{:?}", c.warnings);
     let after = std::fs::metadata(Cache::path_in(&filled, &s))
@@ -247,7 +274,9 @@ fn blocked_entry_paths_cost_the_cache_not_the_build() {
     }
     let mut c = Cache::new(&main);
     c.fallback = Some(fb.clone());
-    let e = c.get(&s, &mut |_, _| {}).unwrap();
+    let e = c
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     assert_eq!(e.source, Source::Generated);
     assert!(e.path.is_none());
     assert_eq!(e.texture.data, generate(&s, &mut |_, _| {}).data);
@@ -266,7 +295,9 @@ fn blocked_entry_paths_cost_the_cache_not_the_build() {
     std::fs::remove_dir(Cache::path_in(&fb, &s)).unwrap();
     let mut c = Cache::new(&main);
     c.fallback = Some(fb.clone());
-    let e = c.get(&s, &mut |_, _| {}).unwrap();
+    let e = c
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     assert_eq!(e.path, Some(Cache::path_in(&fb, &s)));
     assert!(
         c.warnings
@@ -341,7 +372,9 @@ fn orphaned_temporaries_are_removed_by_the_next_writer() {
     let name = format!("{}.nbk", build_assets::cache::key(&s));
     let orphan = dir.join(format!(".{name}.deadbeef.tmp"));
     std::fs::write(&orphan, b"half").unwrap();
-    Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
+    Cache::new(&dir)
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     assert!(!orphan.exists());
 }
 
@@ -351,7 +384,9 @@ fn orphaned_temporaries_are_removed_by_the_next_writer() {
 fn generated_entries_are_dated_in_the_past() {
     let dir = tmp("mtime");
     let s = spec(STBN);
-    let e = Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
+    let e = Cache::new(&dir)
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     let m = std::fs::metadata(e.path.unwrap())
         .unwrap()
         .modified()
@@ -597,7 +632,9 @@ fn a_full_disk_costs_the_cache_not_the_build() {
     let fallback = dir.join("fallback");
     let mut c = Cache::new(small.join("cache"));
     c.fallback = Some(fallback.clone());
-    let e = c.get(&s, &mut |_, _| {}).unwrap();
+    let e = c
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     assert_eq!(e.path, Some(Cache::path_in(&fallback, &s)));
     assert_eq!(e.texture.data, generate(&s, &mut |_, _| {}).data);
     assert!(
@@ -612,7 +649,9 @@ fn a_full_disk_costs_the_cache_not_the_build() {
     // Both full: still the texture, uncached, with a warning.
     let mut c = Cache::new(small.join("cache"));
     c.fallback = Some(small.join("fallback"));
-    let e = c.get(&s, &mut |_, _| {}).unwrap();
+    let e = c
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     assert!(e.path.is_none());
     assert_eq!(e.texture.data.len(), s.byte_len());
     assert!(
@@ -630,7 +669,7 @@ fn kill_test_child() {
     };
     let s = spec(KILL_SPEC);
     Cache::new(PathBuf::from(dir))
-        .get(&s, &mut |_, _| {})
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
         .unwrap();
 }
 
@@ -645,7 +684,7 @@ fn kill_9_mid_bake_leaves_nothing_wrong() {
     let want = generate(&s, &mut |_, _| {}).data;
     let start = std::time::Instant::now();
     Cache::new(dir.join("timing"))
-        .get(&s, &mut |_, _| {})
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
         .unwrap();
     let full = start.elapsed();
     for round in 0..6u32 {
@@ -668,7 +707,9 @@ fn kill_9_mid_bake_leaves_nothing_wrong() {
         let _ = child.kill();
         let _ = child.wait();
         let mut c = Cache::new(&d);
-        let e = c.get(&s, &mut |_, _| {}).unwrap();
+        let e = c
+            .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+            .unwrap();
         assert_eq!(e.texture.data, want, "round {round}");
         let tmps = files_ending(&d, &[".tmp"]);
         assert!(tmps.is_empty(), "round {round}: {tmps:?}");
@@ -683,7 +724,9 @@ fn writes_leave_a_gitignore_and_hits_record_their_use() {
     let dir = tmp("tidy");
     let s = spec(STBN);
     let key = build_assets::cache::key(&s);
-    Cache::new(&dir).get(&s, &mut |_, _| {}).unwrap();
+    Cache::new(&dir)
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
     let ignore = std::fs::read_to_string(dir.join(".gitignore")).unwrap();
     for pat in ["*.lock", "*.tmp", "used/"] {
         assert!(ignore.lines().any(|l| l == pat), "{ignore}");
@@ -703,7 +746,7 @@ fn writes_leave_a_gitignore_and_hits_record_their_use() {
         .modified()
         .unwrap();
     let e = Cache::new(&dir)
-        .get(&s, &mut |_, _| panic!("a hit"))
+        .get_or_insert_with(&s, || panic!("a hit"))
         .unwrap();
     assert_eq!(e.source, Source::Hit);
     let t = std::fs::metadata(&used).unwrap().modified().unwrap();
@@ -733,8 +776,10 @@ fn tidy_lists_verifies_and_prunes() {
         spec("kind = \"white\"\ndims = [8, 8]\nseed = 2"),
     );
     let mut c = Cache::new(&dir);
-    c.get(&a, &mut |_, _| {}).unwrap();
-    c.get(&b, &mut |_, _| {}).unwrap();
+    c.get_or_insert_with(&a, || generate(&a, &mut |_, _| {}))
+        .unwrap();
+    c.get_or_insert_with(&b, || generate(&b, &mut |_, _| {}))
+        .unwrap();
     // A stale entry: a's bytes under the key an older generator version gave its spec.
     let old_key = format!(
         "{:032x}",
@@ -816,11 +861,11 @@ fn fallback_hits_are_promoted_into_the_cache_directory() {
     let dir = tmp("promote");
     let s = spec(STBN);
     Cache::new(dir.join("fallback"))
-        .get(&s, &mut |_, _| {})
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
         .unwrap();
     let mut c = Cache::new(dir.join("committed"));
     c.fallback = Some(dir.join("fallback"));
-    let e = c.get(&s, &mut |_, _| panic!("a hit")).unwrap();
+    let e = c.get_or_insert_with(&s, || panic!("a hit")).unwrap();
     assert_eq!(e.source, Source::Hit);
     let promoted = Cache::path_in(&dir.join("committed"), &s);
     assert_eq!(e.path.as_deref(), Some(promoted.as_path()));

@@ -252,7 +252,7 @@ fn names_longer_than_a_file_name_allows_are_refused() {
 /// cache key as writing it out. EA's β 0.1 must be asked for.
 #[test]
 fn fast_defaults_to_the_plain_ema_games_run() {
-    use build_assets::fast::TemporalFilter;
+    use build_assets::generate::fast::TemporalFilter;
     let temporal = |body: &str| match spec(body).kind {
         build_assets::spec::Kind::Fast(p) => p.temporal,
         k => panic!("not fast: {k:?}"),

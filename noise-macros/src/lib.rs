@@ -276,7 +276,7 @@ fn expand(input: Input) -> TokenStream {
     let entry = if analyzer {
         cache.lookup(&s)
     } else {
-        match cache.get(&s, &mut |_, _| {}) {
+        match cache.get_or_insert_with(&s, || build_assets::generate(&s, &mut |_, _| {})) {
             Ok(e) => Some(e),
             Err(e) => return fail(e.to_string()),
         }

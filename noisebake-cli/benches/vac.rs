@@ -3,7 +3,7 @@
 //!
 //! `cargo bench -p noisebake-cli --bench vac`
 
-use build_assets::vac::{self, Axis, DEFAULT_CUTOFF, Footprint, Group, VacConfig};
+use build_assets::generate::vac::{self, Axis, DEFAULT_CUTOFF, Footprint, Group, VacConfig};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::time::Duration;
 

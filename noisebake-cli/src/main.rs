@@ -251,7 +251,7 @@ fn generate_with_progress(spec: &TextureSpec) -> Texture {
 /// Runs `run` with a progress callback that shows a bar on stderr once it has run for 2 s;
 /// a generation estimated to take longer than that is announced first, with its estimate.
 fn with_progress<T>(spec: &TextureSpec, run: impl FnOnce(&mut dyn FnMut(u64, u64)) -> T) -> T {
-    let est = build_assets::estimate::estimate(spec);
+    let est = build_assets::generate::estimate::estimate(spec);
     let mut said = false;
     let mut say = |done: u64| {
         if !said && done < u64::MAX && est.seconds > 2.0 {
@@ -345,7 +345,8 @@ fn bake(
     let mut cache = locator.resolve().map_err(|e| e.to_string())?;
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     for s in &file.textures {
-        let entry = with_progress(s, |cb| cache.get(s, cb)).map_err(|e| e.to_string())?;
+        let entry = with_progress(s, |cb| cache.get_or_insert_with(s, || generate(s, cb)))
+            .map_err(|e| e.to_string())?;
         for w in cache.warnings.drain(..) {
             eprintln!("warning: {w}");
         }

@@ -1,7 +1,7 @@
 //! 2D point sets in the unit torus `[0, 1)²` for the point-set analysis (CNJ §2.4–2.6): curl-noise
 //! jittering (direct and iterative), random jitter, and Bridson's Poisson-disk sampling.
 
-use build_assets::rng::{SplitMix64, derive_seed};
+use build_assets::generate::rng::{SplitMix64, derive_seed};
 use noise_runtime::cnj::{Cnj2, velocity2};
 
 /// A point-set generator.

@@ -3,7 +3,7 @@
 
 #[path = "../../build-assets/tests/common/mod.rs"]
 mod common;
-use build_assets::fast::{self, Combine, FastParams, Filter, TemporalFilter};
+use build_assets::generate::fast::{self, Combine, FastParams, Filter, TemporalFilter};
 use common::{error, gen_tex};
 use noisebake_cli::analysis::filtered::{Denoiser, filtered_rmse};
 use noisebake_cli::report::fast::scalar_params;
@@ -218,7 +218,7 @@ fn vector_masks_store_unit_vectors_like_the_public_textures() {
 /// capped it lowers the loss.
 #[test]
 fn paper_schedule_permutes_slices_and_lowers_the_loss_when_capped() {
-    use build_assets::fast::paper::Schedule;
+    use build_assets::generate::fast::paper::Schedule;
     let mut p = noisebake_cli::report::fast::cosine_params();
     p.spatial = Filter::Box { size: 3 };
     let dims = [16, 16, 4];

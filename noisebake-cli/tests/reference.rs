@@ -5,9 +5,9 @@
 //! `kernel::energy_scale`), so sums
 //! are exact and the comparison can demand identical rankings.
 
-use build_assets::rng::{SplitMix64, TieRank, sample_distinct};
-use build_assets::vac::kernel::{energy_scale, gaussian, quantize};
-use build_assets::vac::{self, Axis, DEFAULT_CUTOFF, Footprint, Group, VacConfig};
+use build_assets::generate::rng::{SplitMix64, TieRank, sample_distinct};
+use build_assets::generate::vac::kernel::{energy_scale, gaussian, quantize};
+use build_assets::generate::vac::{self, Axis, DEFAULT_CUTOFF, Footprint, Group, VacConfig};
 
 struct Reference<'a> {
     /// Fixed-point units per unit weight.
@@ -258,7 +258,7 @@ fn the_truncated_kernel_matches_the_reference_where_it_covers_the_torus() {
 /// dropped weight (plus the fixed-point rounding), and quality (spatial and temporal low-frequency power) is unchanged.
 #[test]
 fn truncation_error_is_bounded_and_quality_is_unchanged() {
-    use build_assets::spec::{Format, encode_ranks};
+    use build_assets::encoding::{Format, encode_ranks};
     use noisebake_cli::analysis::analyze;
     let sizes = [48, 48, 8];
     let groups = vec![g(&[0, 1]), g(&[2])];

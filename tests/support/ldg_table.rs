@@ -16,7 +16,7 @@ fn blue(x: i32, y: i32) -> f32 {
 }
 
 fn white(x: i32, y: i32) -> f32 {
-    let h = build_assets::rng::mix64(((x as u64) << 32) ^ y as u32 as u64);
+    let h = build_assets::generate::rng::mix64(((x as u64) << 32) ^ y as u32 as u64);
     (h >> 40) as f32 / (1u64 << 24) as f32
 }
 

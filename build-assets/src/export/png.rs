@@ -48,7 +48,7 @@ pub fn write_slices(t: &Texture, dir: &Path, stem: &str) -> Result<Vec<PathBuf>,
                 image::ImageEncoder::write_image(enc, bytes, w, h, image::ExtendedColorType::Rgba8)
             }
             (_, 1) => {
-                let vals: Vec<u16> = crate::spec::decode_unit(bytes, t.format.scalar)
+                let vals: Vec<u16> = crate::encoding::decode_unit(bytes, t.format.scalar)
                     .iter()
                     .map(|v| (v * 65536.0).floor().clamp(0.0, 65535.0) as u16)
                     .collect();

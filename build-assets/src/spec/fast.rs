@@ -1,11 +1,226 @@
-//! The keys of the `fast` kind: sample space, distribution, filters, combination.
+//! The `fast` kind: its parameter types (sample space, distribution, filters, combination,
+//! start), their parsing, defaults and validation. The generator (`crate::generate::fast`)
+//! reads these types and adds the filters' overlaps; nothing here depends on it.
 
 use super::{Fields, Span, Spanned, SpecError, Value, number, type_error};
-use crate::fast::{
-    Combine, Distribution, FastParams, Filter, SampleSpace, Start, TemporalFilter,
-    space::SAMPLE_SPACES,
-};
 use crate::spec::{Format, Scalar, closest};
+
+/// Every parameter of a FAST mask (the `fast` spec kind).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FastParams {
+    /// Where samples live.
+    pub sample_space: SampleSpace,
+    /// Distribution of scalar samples.
+    pub distribution: Distribution,
+    /// Spatial filter (separable in x and y).
+    pub spatial: Filter,
+    /// Temporal filter.
+    pub temporal: TemporalFilter,
+    /// How spatial and temporal overlaps combine.
+    pub combine: Combine,
+    /// Optional cap on optimisation rounds (by default until converged, at most the generator's `MAX_ROUNDS`).
+    pub iterations: Option<u32>,
+    /// Where the optimiser starts.
+    pub start: Start,
+}
+
+/// The optimiser's starting arrangement of each slice's stratified samples. The default is
+/// [`Start::Ign`] for scalar sample spaces and [`Start::Random`] for vectors.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Start {
+    /// A random order per slice (FAST §4).
+    Random,
+    /// Scalar samples in the order of interleaved gradient noise's ranks in that slice, IGN
+    /// animated by 5.588238 pixels per frame (Jimenez 2014): a swap optimiser started there can
+    /// only end below IGN's loss.
+    Ign,
+}
+
+/// A 1D filter along a spatial axis (applied separably in x and y).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Filter {
+    /// No filtering along the axis (a single unit tap).
+    None,
+    /// An `n`-tap box.
+    Box {
+        /// Tap count.
+        size: usize,
+    },
+    /// A Gaussian of standard deviation σ, truncated at `ceil(3σ)`.
+    Gauss {
+        /// Standard deviation in texels.
+        sigma: f64,
+    },
+    /// The binomial filter of order N (`C(N, k) / 2^N`, N + 1 taps).
+    Binomial {
+        /// Order.
+        order: usize,
+    },
+}
+
+impl Filter {
+    /// The normalised taps (they sum to 1), centred.
+    pub fn taps(self) -> Vec<f64> {
+        let t: Vec<f64> = match self {
+            Filter::None => vec![1.0],
+            Filter::Box { size } => vec![1.0; size.max(1)],
+            Filter::Gauss { sigma } => {
+                let r = (3.0 * sigma).ceil() as i64;
+                (-r..=r)
+                    .map(|x| crate::detmath::exp(-((x * x) as f64) / (2.0 * sigma * sigma)))
+                    .collect()
+            }
+            Filter::Binomial { order } => {
+                let mut row = vec![1.0f64];
+                for _ in 0..order {
+                    let mut next = vec![1.0; row.len() + 1];
+                    for k in 1..row.len() {
+                        next[k] = row[k - 1] + row[k];
+                    }
+                    row = next;
+                }
+                row
+            }
+        };
+        let sum: f64 = t.iter().sum();
+        t.into_iter().map(|x| x / sum).collect()
+    }
+}
+
+/// A filter along time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TemporalFilter {
+    /// No temporal filtering.
+    None,
+    /// An `n`-frame box.
+    Box {
+        /// Frame count.
+        size: usize,
+    },
+    /// A Gaussian over frames.
+    Gauss {
+        /// Standard deviation in frames.
+        sigma: f64,
+    },
+    /// Exponential moving average (FAST eq. 14–17): each frame blends `α` of the new sample
+    /// into the history; with probability `β` per frame the history is rejected (eq. 17).
+    /// `β = 0` is the plain EMA a game's accumulation runs, at its steady state over the
+    /// looping texture.
+    Ema {
+        /// Blend weight of the new frame, in (0, 1].
+        alpha: f64,
+        /// History-rejection probability, in [0, 1]; 0 for a plain EMA.
+        beta: f64,
+    },
+}
+
+impl TemporalFilter {
+    /// Frames the filter spans (1 for none).
+    pub fn width(self) -> usize {
+        match self {
+            TemporalFilter::None | TemporalFilter::Ema { .. } => 1,
+            TemporalFilter::Box { size } => size,
+            TemporalFilter::Gauss { sigma } => Filter::Gauss { sigma }.taps().len(),
+        }
+    }
+}
+
+/// How the spatial and temporal overlaps combine (FAST §5.2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Combine {
+    /// `F = F_xy · F_t`: the result is filtered in space and time.
+    Product,
+    /// `F = w · F_xy` within a frame `+ (1 − w) · F_t` at the same pixel (Wolfe et al. 2022's
+    /// separate spatial and temporal objectives).
+    Separate(f64),
+}
+
+/// Where the samples live.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SampleSpace {
+    /// A scalar (distribution chosen by [`Distribution`]); distance `|x − y|`.
+    Scalar,
+    /// An angle in turns, `[0, 1)`; distance wrapped around the circle.
+    Circle,
+    /// Uniform in `[0, 1)^2`; Euclidean distance.
+    Vec2,
+    /// Uniform in `[0, 1)^3`; Euclidean distance.
+    Vec3,
+    /// Uniform in `[0, 1)^4`; Euclidean distance.
+    Vec4,
+    /// Unit vectors, uniform on the sphere; geodesic distance.
+    Sphere,
+    /// Unit vectors, uniform on the `z ≥ 0` hemisphere; geodesic distance.
+    Hemisphere,
+    /// Unit vectors, cosine-weighted on the `z ≥ 0` hemisphere; geodesic distance.
+    CosineHemisphere,
+}
+
+/// Every `sample_space` value.
+pub const SAMPLE_SPACES: &[&str] = &[
+    "scalar",
+    "circle",
+    "vec2",
+    "vec3",
+    "vec4",
+    "sphere",
+    "hemisphere",
+    "cosine_hemisphere",
+];
+
+/// The distribution of scalar samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Distribution {
+    /// Uniform on `[0, 1)`.
+    Uniform,
+    /// Triangular on `[0, 1)`, peak at ½.
+    Tent,
+    /// Standard normal (mean 0, σ 1); f32 storage only.
+    Gauss,
+}
+
+impl SampleSpace {
+    /// Parses a `sample_space` value.
+    pub fn parse(s: &str) -> Option<SampleSpace> {
+        Some(match s {
+            "scalar" => SampleSpace::Scalar,
+            "circle" => SampleSpace::Circle,
+            "vec2" => SampleSpace::Vec2,
+            "vec3" => SampleSpace::Vec3,
+            "vec4" => SampleSpace::Vec4,
+            "sphere" => SampleSpace::Sphere,
+            "hemisphere" => SampleSpace::Hemisphere,
+            "cosine_hemisphere" => SampleSpace::CosineHemisphere,
+            _ => return None,
+        })
+    }
+
+    /// The key's spelling.
+    pub fn name(self) -> &'static str {
+        SAMPLE_SPACES[self as usize]
+    }
+
+    /// Channels per sample.
+    pub fn channels(self) -> usize {
+        match self {
+            SampleSpace::Scalar | SampleSpace::Circle => 1,
+            SampleSpace::Vec2 => 2,
+            SampleSpace::Vec3
+            | SampleSpace::Sphere
+            | SampleSpace::Hemisphere
+            | SampleSpace::CosineHemisphere => 3,
+            SampleSpace::Vec4 => 4,
+        }
+    }
+
+    /// Whether samples are unit vectors (stored as `0.5 + 0.5·v`).
+    pub fn is_unit_vector(self) -> bool {
+        matches!(
+            self,
+            SampleSpace::Sphere | SampleSpace::Hemisphere | SampleSpace::CosineHemisphere
+        )
+    }
+}
 
 /// The EMA's blend weight when a spec leaves it out (FAST §7 uses 0.1).
 const DEFAULT_ALPHA: f64 = 0.1;
@@ -215,7 +430,7 @@ pub(super) fn parse(
         iterations,
         start,
     };
-    // No refusal by work: a long bake is announced with its estimate (`crate::estimate`) and
+    // No refusal by work: a long bake is announced with its estimate (`crate::generate::estimate`) and
     // shows progress; memory is bounded by the texel limit every kind shares.
     Ok(params)
 }

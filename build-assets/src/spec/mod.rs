@@ -5,18 +5,18 @@
 //! same thing everywhere and every error names the key (and points at it when a span is known).
 
 mod error;
-mod fast;
-mod format;
+pub mod fast;
 mod toml_file;
+pub mod vac;
 mod value;
 
+pub use crate::encoding::{Format, Scalar};
 pub use error::{SpecError, closest};
-pub use format::{Format, Scalar, decode_unit, encode_ranks, encode_unit};
 pub use toml_file::{SpecFile, parse_toml, parse_value, read_cache_dir};
+pub use vac::{Group, splat_footprint};
 pub use value::{Span, Spanned, Table, Value};
 
-use crate::fast::FastParams;
-use crate::vac::Group;
+use fast::FastParams;
 
 /// Most texels a texture may have (64 Mi): void and cluster needs about
 /// [`WORK_BYTES_PER_TEXEL`] bytes of working memory per texel.
@@ -484,96 +484,7 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         Ok(())
     };
     let kind = match kind_name {
-        "blue2d" => {
-            want_dims(2, 2)?;
-            Kind::Blue2d {
-                sigma: f.sigma("sigma", 1.5)?,
-                initial_density: f.density()?,
-            }
-        }
-        "stbn" => {
-            want_dims(3, 3)?;
-            Kind::Stbn {
-                sigma_xy: f.sigma("sigma_xy", 1.9)?,
-                sigma_t: f.sigma("sigma_t", 1.9)?,
-                initial_density: f.density()?,
-                histogram: f.histogram()?,
-            }
-        }
-        "vac" => {
-            want_dims(1, 4)?;
-            let groups = match f.get("groups") {
-                None => vec![Group {
-                    axes: (0..dims.len()).collect(),
-                    sigma: 1.9,
-                }],
-                Some(v) => parse_groups(v, dims.len())?,
-            };
-            let toroidal = match f.get("toroidal") {
-                None => vec![true; dims.len()],
-                Some(Spanned {
-                    value: Value::Bool(b),
-                    ..
-                }) => vec![*b; dims.len()],
-                Some(
-                    v @ Spanned {
-                        value: Value::Array(a),
-                        ..
-                    },
-                ) => {
-                    let t = a
-                        .iter()
-                        .map(|x| match x.value {
-                            Value::Bool(b) => Ok(b),
-                            _ => Err(type_error(
-                                "toroidal",
-                                "a boolean or an array of booleans",
-                                x,
-                            )),
-                        })
-                        .collect::<Result<Vec<_>, _>>()?;
-                    if t.len() != dims.len() {
-                        return Err(SpecError::at(
-                            "toroidal",
-                            v.span,
-                            format!("`toroidal` has {} entries for {} dims", t.len(), dims.len()),
-                        ));
-                    }
-                    t
-                }
-                Some(v) => {
-                    return Err(type_error(
-                        "toroidal",
-                        "a boolean or an array of booleans",
-                        v,
-                    ));
-                }
-            };
-            Kind::Vac {
-                groups,
-                toroidal,
-                initial_density: f.density()?,
-                histogram: f.histogram()?,
-            }
-        }
-        "white" => {
-            want_dims(1, 4)?;
-            Kind::White
-        }
-        "independent2d" => {
-            want_dims(2, 4)?;
-            Kind::Independent2d {
-                sigma: f.sigma("sigma", 1.9)?,
-                initial_density: f.density()?,
-            }
-        }
-        "golden" => {
-            want_dims(3, 3)?;
-            Kind::Golden {
-                sigma: f.sigma("sigma", 1.9)?,
-                initial_density: f.density()?,
-            }
-        }
+        name if vac::KINDS.contains(&name) => vac::parse(name, &mut f, &dims, &want_dims)?,
         "fast" => {
             want_dims(2, 3)?;
             Kind::Fast(fast::parse(&mut f, &dims, format, format_span)?)
@@ -647,98 +558,6 @@ fn parse_dims(v: &Spanned<Value>) -> Result<Vec<usize>, SpecError> {
         ));
     }
     Ok(dims)
-}
-
-fn parse_groups(v: &Spanned<Value>, ndims: usize) -> Result<Vec<Group>, SpecError> {
-    let Value::Array(items) = &v.value else {
-        return Err(type_error(
-            "groups",
-            "an array of { axes = [...], sigma = ... } tables",
-            v,
-        ));
-    };
-    let mut seen = vec![false; ndims];
-    let mut groups = Vec::new();
-    for (gi, g) in items.iter().enumerate() {
-        let Value::Table(t) = &g.value else {
-            return Err(type_error(
-                &format!("groups[{gi}]"),
-                "a table { axes = [...], sigma = ... }",
-                g,
-            ));
-        };
-        let mut f = Fields {
-            table: t,
-            used: vec![false; t.len()],
-            allowed: Vec::new(),
-        };
-        let key = format!("groups[{gi}].axes");
-        let axes_v = f
-            .get("axes")
-            .ok_or_else(|| SpecError::at(&key, g.span, format!("`{key}` is missing")))?;
-        let Value::Array(ax) = &axes_v.value else {
-            return Err(type_error(&key, "an array of axis indices", axes_v));
-        };
-        if ax.is_empty() {
-            return Err(SpecError::at(
-                &key,
-                axes_v.span,
-                format!("`{key}` is empty"),
-            ));
-        }
-        let mut axes = Vec::new();
-        for a in ax {
-            let i = integer(&key, a)?;
-            if i < 0 || i as usize >= ndims {
-                return Err(SpecError::at(
-                    &key,
-                    a.span,
-                    format!("`{key}`: axis {i} does not exist (dims has {ndims} axes)"),
-                ));
-            }
-            if seen[i as usize] {
-                return Err(SpecError::at(
-                    &key,
-                    a.span,
-                    format!("`{key}`: axis {i} is listed twice"),
-                ));
-            }
-            seen[i as usize] = true;
-            axes.push(i as usize);
-        }
-        let sigma = f.sigma("sigma", 1.9).map_err(|mut e| {
-            e.key = Some(format!("groups[{gi}].sigma"));
-            e.message = format!("groups[{gi}]: {}", e.message);
-            e
-        })?;
-        f.finish(&format!("groups[{gi}]"))?;
-        groups.push(Group { axes, sigma });
-    }
-    if let Some(missing) = seen.iter().position(|s| !s) {
-        return Err(SpecError::at(
-            "groups",
-            v.span,
-            format!("`groups`: axis {missing} is missing from every group"),
-        ));
-    }
-    Ok(groups)
-}
-
-/// Texels whose energy one void-and-cluster placement updates (the truncated Gaussians of
-/// every axis group, summed); at least 1.
-pub fn splat_footprint(spec: &TextureSpec) -> u64 {
-    let group_work = |axes: &[usize], sigma: f64| -> u64 {
-        let r = (-2.0 * sigma * sigma * crate::vac::DEFAULT_CUTOFF.ln()).sqrt() as u64;
-        axes.iter()
-            .map(|&a| (2 * r + 1).min(spec.dims[a] as u64))
-            .product()
-    };
-    spec.kind
-        .groups()
-        .iter()
-        .map(|g| group_work(&g.axes, g.sigma))
-        .sum::<u64>()
-        .max(1)
 }
 
 /// Rejects parameter combinations whose generation would take unreasonably long.

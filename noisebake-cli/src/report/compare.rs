@@ -15,7 +15,7 @@
 
 use crate::analysis::filtered::{Denoiser, filtered_rmse, filtered_rmse_curve};
 use build_assets::cache::Locator;
-use build_assets::fast::{self, Filter};
+use build_assets::generate::fast::{self, Filter};
 use build_assets::spec::TextureSpec;
 use serde::Serialize;
 use std::path::Path;
@@ -160,7 +160,7 @@ fn bake(s: &TextureSpec, log: &mut dyn FnMut(&str)) -> Result<(Vec<f64>, f64, bo
     .resolve()
     .map_err(|e| e.to_string())?;
     if cache.lookup(s).is_none() {
-        let est = build_assets::estimate::estimate(s);
+        let est = build_assets::generate::estimate::estimate(s);
         if est.seconds > 2.0 {
             log(&format!(
                 "  baking {} {:?}: estimated {est}",
@@ -170,7 +170,9 @@ fn bake(s: &TextureSpec, log: &mut dyn FnMut(&str)) -> Result<(Vec<f64>, f64, bo
         }
     }
     let start = Instant::now();
-    let e = cache.get(s, &mut |_, _| {}).map_err(|e| e.to_string())?;
+    let e = cache
+        .get_or_insert_with(s, || build_assets::generate(s, &mut |_, _| {}))
+        .map_err(|e| e.to_string())?;
     let cached = e.source == build_assets::cache::Source::Hit;
     let secs = if cached {
         e.seconds

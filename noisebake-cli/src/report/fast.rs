@@ -3,7 +3,9 @@
 
 use crate::analysis::filtered::{Denoiser, filtered_rmse};
 use crate::export::plot::{Labels, PALETTE, Series, line_plot};
-use build_assets::fast::{self, Combine, FastParams, Filter, Outcome, SampleSpace, TemporalFilter};
+use build_assets::generate::fast::{
+    self, Combine, FastParams, Filter, Outcome, SampleSpace, TemporalFilter,
+};
 use build_assets::spec::{Format, Histogram, Kind, TextureSpec};
 use serde::Serialize;
 use std::path::Path;

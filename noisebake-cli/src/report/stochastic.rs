@@ -9,7 +9,7 @@
 //! the same points: 3D Perlin, fBm with 10 octaves, Worley F1, and their cellular F1 against
 //! our smooth Voronoi (neither has smooth Voronoi; it is the goal's nearest stand-in).
 
-use build_assets::rng::SplitMix64;
+use build_assets::generate::rng::SplitMix64;
 use build_assets::spec::{Format, Histogram, Kind, TextureSpec};
 use noise_runtime::stochastic::*;
 use serde::Serialize;

@@ -14,7 +14,7 @@
 //! [`super::MAX_ROUNDS`]).
 
 use super::filter::Footprint;
-use crate::rng::{SplitMix64, derive_seed};
+use crate::generate::rng::{SplitMix64, derive_seed};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::time::Instant;
@@ -438,7 +438,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fast::{Combine, Filter, TemporalFilter};
+    use crate::generate::fast::{Combine, Filter, TemporalFilter};
 
     /// The screen only ever skips: whenever the screened ΔL accepts a swap, it is the exact
     /// ΔL, bit for bit (same terms, same order); it never accepts a swap the exact evaluation

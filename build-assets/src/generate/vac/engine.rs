@@ -40,7 +40,7 @@
 use super::kernel::{Axis, Energy, Footprint, GroupFootprint};
 use super::queue::{BLOCK, BLOCK_BITS, BlockQueue};
 use super::tree::ABSENT;
-use crate::rng::{SplitMix64, TieRank, sample_distinct};
+use crate::generate::rng::{SplitMix64, TieRank, sample_distinct};
 
 const INVALID: u32 = u32::MAX;
 

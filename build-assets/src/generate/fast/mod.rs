@@ -35,43 +35,14 @@ pub mod optimize;
 pub mod paper;
 pub mod space;
 
-pub use filter::{Combine, Filter, Footprint, TemporalFilter};
+pub use crate::spec::fast::{
+    Combine, Distribution, FastParams, Filter, SampleSpace, Start, TemporalFilter,
+};
+pub use filter::Footprint;
 pub use optimize::{CurvePoint, Outcome};
-pub use space::{Distribution, SampleSpace};
 
-use crate::rng::{SplitMix64, derive_seed};
-use crate::spec::{Scalar, encode_ranks, encode_unit};
-
-/// Every parameter of a FAST mask (the `fast` spec kind).
-#[derive(Clone, Debug, PartialEq)]
-pub struct FastParams {
-    /// Where samples live.
-    pub sample_space: SampleSpace,
-    /// Distribution of scalar samples.
-    pub distribution: Distribution,
-    /// Spatial filter (separable in x and y).
-    pub spatial: Filter,
-    /// Temporal filter.
-    pub temporal: TemporalFilter,
-    /// How spatial and temporal overlaps combine.
-    pub combine: Combine,
-    /// Optional cap on optimisation rounds (by default until converged, at most [`MAX_ROUNDS`]).
-    pub iterations: Option<u32>,
-    /// Where the optimiser starts.
-    pub start: Start,
-}
-
-/// The optimiser's starting arrangement of each slice's stratified samples. The default is
-/// [`Start::Ign`] for scalar sample spaces and [`Start::Random`] for vectors.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Start {
-    /// A random order per slice (FAST §4).
-    Random,
-    /// Scalar samples in the order of interleaved gradient noise's ranks in that slice, IGN
-    /// animated by 5.588238 pixels per frame (Jimenez 2014): a swap optimiser started there can
-    /// only end below IGN's loss.
-    Ign,
-}
+use crate::encoding::{Scalar, encode_ranks, encode_unit};
+use crate::generate::rng::{SplitMix64, derive_seed};
 
 /// Rounds run when no `iterations` cap is given and convergence is not reached earlier. From
 /// IGN's ranks the loss keeps falling slowly for hundreds of rounds; by 40 the measured error is
@@ -248,7 +219,7 @@ pub fn paper_baseline(
 }
 
 /// Encodes samples for storage. Uniform scalars are the ranks of their slice (so unorm formats
-/// are exactly flat: the rank encoding of [`crate::spec::encode_ranks`]); other scalars and `[0, 1)` vectors are stored as
+/// are exactly flat: the rank encoding of [`crate::encoding::encode_ranks`]); other scalars and `[0, 1)` vectors are stored as
 /// values; unit vectors as `0.5 + 0.5·v` (like the public STBN/FAST textures: unorm values
 /// `round(·(2^bits − 1))`), Gaussian scalars raw (f32 only).
 pub fn encode(params: &FastParams, dims: &[usize], samples: &[f64], scalar: Scalar) -> Vec<u8> {
@@ -286,7 +257,7 @@ pub fn encode(params: &FastParams, dims: &[usize], samples: &[f64], scalar: Scal
 
 /// Decodes stored bytes back to samples (inverse of [`encode`] up to quantisation).
 pub fn decode(params: &FastParams, bytes: &[u8], scalar: Scalar) -> Vec<f64> {
-    let unit = crate::spec::decode_unit(bytes, scalar);
+    let unit = crate::encoding::decode_unit(bytes, scalar);
     if params.sample_space.is_unit_vector() {
         let top = match scalar {
             Scalar::U8 => Some(255.0),

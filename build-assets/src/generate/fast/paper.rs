@@ -23,7 +23,7 @@
 
 use super::filter::Footprint;
 use super::optimize::{CurvePoint, Outcome, Problem, to_state};
-use crate::rng::{SplitMix64, derive_seed, permutation};
+use crate::generate::rng::{SplitMix64, derive_seed, permutation};
 use rayon::prelude::*;
 use std::time::Instant;
 

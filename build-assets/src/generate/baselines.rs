@@ -1,7 +1,7 @@
 //! Baselines the STBN paper compares against (§4.2): white noise, independent 2D blue noise per
 //! slice, and one 2D blue-noise mask animated by the golden ratio.
 
-use crate::rng::{SplitMix64, derive_seed};
+use crate::generate::rng::{SplitMix64, derive_seed};
 use rayon::prelude::*;
 
 /// The golden ratio conjugate φ − 1 = (√5 − 1)/2, the additive recurrence of golden animation.

@@ -7,7 +7,7 @@
 //! round count it typically needs. The constants were fitted to single-thread runs of the
 //! generators on a 2-core x86_64 machine; a faster one takes less.
 
-use crate::fast::SampleSpace;
+use crate::generate::fast::SampleSpace;
 use crate::spec::{Kind, TextureSpec};
 
 /// The expected cost of generating a texture.

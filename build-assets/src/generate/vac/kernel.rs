@@ -16,16 +16,14 @@
 //! truncation error of any texel's energy, per unit of point density, and
 //! [`Footprint::rounding_error`] the bound on its quantisation error.
 
+use crate::spec::vac::Group;
+
 /// A fixed-point energy (see [`energy_scale`]).
 pub type Energy = i32;
 
 /// Bound on the kernel summed over every texel (before rounding), leaving room below `2^30`
 /// for the engine's poison offset.
 const MAX_ENERGY: f64 = (1u64 << 28) as f64;
-
-/// The default truncation of the Gaussian: offsets whose weight is below this are dropped.
-/// At σ = 1.9 this keeps a disc of radius 7.4 (≈ 170 texels in 2D).
-pub const DEFAULT_CUTOFF: f64 = 5e-4;
 
 /// A Gaussian weight in fixed point: `round(w · scale)`.
 pub fn quantize(w: f64, scale: f64) -> Energy {
@@ -72,15 +70,6 @@ pub struct Axis {
     pub size: usize,
     /// Whether the axis wraps (distances are taken on the circle).
     pub toroidal: bool,
-}
-
-/// A set of axes that share one Gaussian (STBN App. B); the other axes must match exactly.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Group {
-    /// Indices of the axes in the group (0 = x, fastest in memory).
-    pub axes: Vec<usize>,
-    /// Standard deviation of the Gaussian, in texels.
-    pub sigma: f64,
 }
 
 /// The range of signed offsets along an axis that reach every other texel exactly once (toroidal:
@@ -219,6 +208,7 @@ fn tail_bound(sigma: f64, radius: i64, dims: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spec::vac::DEFAULT_CUTOFF;
 
     #[test]
     fn toroidal_offsets_reach_each_texel_once() {

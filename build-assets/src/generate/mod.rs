@@ -1,9 +1,22 @@
 //! From a validated spec to a texture: dispatch to the generator of each kind and encode.
+//!
+//! The second stage of the pipeline (spec → **generate** → cache → codegen/export → bake):
+//! [`vac`] (void and cluster in N dimensions), [`fast`] (the FAST swap optimiser),
+//! [`baselines`] (white noise, per-slice and golden-ratio-animated 2D blue noise), [`estimate`]
+//! (what a generation will cost, before it starts) and [`rng`] (the seeded generators). Every
+//! module reads the spec's parameter types; none is read by the spec.
 
-use crate::baselines;
-use crate::spec::{Histogram, Kind, TextureSpec, encode_ranks, encode_unit};
+pub mod baselines;
+pub mod estimate;
+pub mod fast;
+pub mod rng;
+pub mod vac;
+
+use crate::encoding::{encode_ranks, encode_unit};
+use crate::spec::vac::{DEFAULT_CUTOFF, Group};
+use crate::spec::{Histogram, Kind, TextureSpec};
 use crate::texture::Texture;
-use crate::vac::{self, Axis, DEFAULT_CUTOFF, Group, VacConfig};
+use vac::{Axis, VacConfig};
 
 /// Version of the generators' output. Bump it whenever any generator's bytes change for an
 /// unchanged spec: the cache key includes it, so stale entries are never served.
@@ -116,8 +129,8 @@ pub fn generate(spec: &TextureSpec, progress: Progress) -> Texture {
             encode_unit(&baselines::golden(&ranks, dims[2]), scalar)
         }
         Kind::Fast(params) => {
-            let out = crate::fast::generate(params, dims, spec.seed, progress);
-            crate::fast::encode(params, dims, &out.samples, scalar)
+            let out = crate::generate::fast::generate(params, dims, spec.seed, progress);
+            crate::generate::fast::encode(params, dims, &out.samples, scalar)
         }
     };
     Texture {

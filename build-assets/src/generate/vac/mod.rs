@@ -11,8 +11,9 @@ pub mod kernel;
 mod queue;
 mod tree;
 
+pub use crate::spec::vac::{DEFAULT_CUTOFF, Group};
 pub use engine::{ProgressFn, RunStats};
-pub use kernel::{Axis, DEFAULT_CUTOFF, Footprint, Group};
+pub use kernel::{Axis, Footprint};
 
 /// Everything void and cluster needs to rank a mask.
 #[derive(Clone, Debug, PartialEq)]

@@ -61,7 +61,7 @@ impl BlockQueue {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::SplitMix64;
+    use crate::generate::rng::SplitMix64;
 
     #[test]
     fn best_tracks_block_minima() {

@@ -2,85 +2,10 @@
 //! (FAST eq. 4: `F_jk = Σ_i f_ij f_ik`).
 //!
 //! Every filter is applied separably per axis and wraps on the texture's torus, so its overlap is
-//! the circular autocorrelation of the taps laid onto a ring of the axis size.
+//! the circular autocorrelation of the taps laid onto a ring of the axis size. The filter types
+//! themselves are the spec's ([`crate::spec::fast`]).
 
-/// A 1D filter along a spatial axis (applied separably in x and y).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Filter {
-    /// No filtering along the axis (a single unit tap).
-    None,
-    /// An `n`-tap box.
-    Box {
-        /// Tap count.
-        size: usize,
-    },
-    /// A Gaussian of standard deviation σ, truncated at `ceil(3σ)`.
-    Gauss {
-        /// Standard deviation in texels.
-        sigma: f64,
-    },
-    /// The binomial filter of order N (`C(N, k) / 2^N`, N + 1 taps).
-    Binomial {
-        /// Order.
-        order: usize,
-    },
-}
-
-impl Filter {
-    /// The normalised taps (they sum to 1), centred.
-    pub fn taps(self) -> Vec<f64> {
-        let t: Vec<f64> = match self {
-            Filter::None => vec![1.0],
-            Filter::Box { size } => vec![1.0; size.max(1)],
-            Filter::Gauss { sigma } => {
-                let r = (3.0 * sigma).ceil() as i64;
-                (-r..=r)
-                    .map(|x| crate::fast::space::exp(-((x * x) as f64) / (2.0 * sigma * sigma)))
-                    .collect()
-            }
-            Filter::Binomial { order } => {
-                let mut row = vec![1.0f64];
-                for _ in 0..order {
-                    let mut next = vec![1.0; row.len() + 1];
-                    for k in 1..row.len() {
-                        next[k] = row[k - 1] + row[k];
-                    }
-                    row = next;
-                }
-                row
-            }
-        };
-        let sum: f64 = t.iter().sum();
-        t.into_iter().map(|x| x / sum).collect()
-    }
-}
-
-/// A filter along time.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum TemporalFilter {
-    /// No temporal filtering.
-    None,
-    /// An `n`-frame box.
-    Box {
-        /// Frame count.
-        size: usize,
-    },
-    /// A Gaussian over frames.
-    Gauss {
-        /// Standard deviation in frames.
-        sigma: f64,
-    },
-    /// Exponential moving average (FAST eq. 14–17): each frame blends `α` of the new sample
-    /// into the history; with probability `β` per frame the history is rejected (eq. 17).
-    /// `β = 0` is the plain EMA a game's accumulation runs, at its steady state over the
-    /// looping texture.
-    Ema {
-        /// Blend weight of the new frame, in (0, 1].
-        alpha: f64,
-        /// History-rejection probability, in [0, 1]; 0 for a plain EMA.
-        beta: f64,
-    },
-}
+use crate::spec::fast::{Combine, Filter, TemporalFilter};
 
 /// The circular autocorrelation `F[d] = Σ_x f[x] f[x + d]` of `taps` wrapped onto a ring of `n`.
 pub fn ring_autocorrelation(taps: &[f64], n: usize) -> Vec<f64> {
@@ -139,25 +64,6 @@ impl TemporalFilter {
             }
         }
     }
-
-    /// Frames the filter spans (1 for none).
-    pub fn width(self) -> usize {
-        match self {
-            TemporalFilter::None | TemporalFilter::Ema { .. } => 1,
-            TemporalFilter::Box { size } => size,
-            TemporalFilter::Gauss { sigma } => Filter::Gauss { sigma }.taps().len(),
-        }
-    }
-}
-
-/// How the spatial and temporal overlaps combine (FAST §5.2).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Combine {
-    /// `F = F_xy · F_t`: the result is filtered in space and time.
-    Product,
-    /// `F = w · F_xy` within a frame `+ (1 − w) · F_t` at the same pixel (Wolfe et al. 2022's
-    /// separate spatial and temporal objectives).
-    Separate(f64),
 }
 
 /// Pair weights below this fraction of the largest are dropped from the footprint.

@@ -76,7 +76,7 @@ impl MinTree {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng::SplitMix64;
+    use crate::generate::rng::SplitMix64;
 
     #[test]
     fn root_is_the_minimum_after_arbitrary_updates() {
