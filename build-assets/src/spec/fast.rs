@@ -222,6 +222,58 @@ impl SampleSpace {
     }
 }
 
+impl FastParams {
+    /// The canonical text of the parameters, field by field in this order (see
+    /// [`TextureSpec::canonical`](super::TextureSpec::canonical) for the grammar):
+    /// `sample_space`, `distribution`, `spatial_filter`, `temporal_filter` (each filter as a
+    /// table with its `kind` first), `combine` (`product` or `{separate=w}`), `iterations` (a
+    /// count or `converged`), `start`.
+    pub fn canonical(&self) -> String {
+        use super::canonical::num;
+        let spatial = match self.spatial {
+            Filter::None => "{kind=none}".to_string(),
+            Filter::Box { size } => format!("{{kind=box,size={size}}}"),
+            Filter::Gauss { sigma } => format!("{{kind=gauss,sigma={}}}", num(sigma)),
+            Filter::Binomial { order } => format!("{{kind=binomial,order={order}}}"),
+        };
+        let temporal = match self.temporal {
+            TemporalFilter::None => "{kind=none}".to_string(),
+            TemporalFilter::Box { size } => format!("{{kind=box,size={size}}}"),
+            TemporalFilter::Gauss { sigma } => format!("{{kind=gauss,sigma={}}}", num(sigma)),
+            TemporalFilter::Ema { alpha, beta } => {
+                format!("{{kind=ema,alpha={},beta={}}}", num(alpha), num(beta))
+            }
+        };
+        let combine = match self.combine {
+            Combine::Product => "product".to_string(),
+            Combine::Separate(w) => format!("{{separate={}}}", num(w)),
+        };
+        let iterations = self
+            .iterations
+            .map_or_else(|| "converged".to_string(), |n| n.to_string());
+        format!(
+            "sample_space={};distribution={};spatial_filter={spatial};temporal_filter={temporal};combine={combine};iterations={iterations};start={}",
+            self.sample_space.name(),
+            self.distribution.name(),
+            match self.start {
+                Start::Random => "random",
+                Start::Ign => "ign",
+            }
+        )
+    }
+}
+
+impl Distribution {
+    /// The key's spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Distribution::Uniform => "uniform",
+            Distribution::Tent => "tent",
+            Distribution::Gauss => "gauss",
+        }
+    }
+}
+
 /// The EMA's blend weight when a spec leaves it out (FAST §7 uses 0.1).
 const DEFAULT_ALPHA: f64 = 0.1;
 

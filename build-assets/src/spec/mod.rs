@@ -4,6 +4,7 @@
 //! produce a [`Table`] of spanned values; [`from_table`] is the one validator, so a key means the
 //! same thing everywhere and every error names the key (and points at it when a span is known).
 
+pub mod canonical;
 mod error;
 pub mod fast;
 mod toml_file;
@@ -174,73 +175,28 @@ impl TextureSpec {
         self.texels() * self.format.texel_bytes()
     }
 
-    /// A canonical one-line form with every default filled in: two specs generate the same bytes
-    /// exactly when their canonical forms are equal (the cache key hashes it).
+    /// The canonical text: one line, field by field, every default filled in (the format is
+    /// documented in [`canonical`](mod@canonical)). Two specs generate the same bytes exactly when
+    /// their canonical texts are equal; the cache key hashes it, KTX2 files and generated items
+    /// carry it.
     pub fn canonical(&self) -> String {
         let dims: Vec<String> = self.dims.iter().map(|d| d.to_string()).collect();
-        let mut s = format!(
+        let head = format!(
             "kind={};dims=[{}];seed={};format={}",
             self.kind.name(),
             dims.join(","),
             self.seed,
             self.format
         );
-        let h = |h: &Histogram| {
-            if *h == Histogram::Slice {
-                "slice"
-            } else {
-                "volume"
-            }
+        let own = match &self.kind {
+            Kind::Fast(p) => p.canonical(),
+            k => vac::canonical(k).unwrap_or_default(),
         };
-        match &self.kind {
-            Kind::Blue2d {
-                sigma,
-                initial_density,
-            }
-            | Kind::Independent2d {
-                sigma,
-                initial_density,
-            }
-            | Kind::Golden {
-                sigma,
-                initial_density,
-            } => {
-                s += &format!(";sigma={sigma:?};initial_density={initial_density:?}");
-            }
-            Kind::Stbn {
-                sigma_xy,
-                sigma_t,
-                initial_density,
-                histogram,
-            } => {
-                s += &format!(
-                    ";sigma_xy={sigma_xy:?};sigma_t={sigma_t:?};initial_density={initial_density:?};histogram={}",
-                    h(histogram)
-                );
-            }
-            Kind::Vac {
-                groups,
-                toroidal,
-                initial_density,
-                histogram,
-            } => {
-                let g: Vec<String> = groups
-                    .iter()
-                    .map(|g| format!("{:?}@{:?}", g.axes, g.sigma))
-                    .collect();
-                s += &format!(
-                    ";groups=[{}];toroidal={toroidal:?};initial_density={initial_density:?};histogram={}",
-                    g.join(","),
-                    h(histogram)
-                );
-            }
-            Kind::White => {}
-            Kind::Fast(p) => {
-                s += ";";
-                s += &p.canonical();
-            }
+        if own.is_empty() {
+            head
+        } else {
+            format!("{head};{own}")
         }
-        s
     }
 }
 

@@ -217,3 +217,69 @@ pub fn splat_footprint(spec: &TextureSpec) -> u64 {
         .sum::<u64>()
         .max(1)
 }
+
+/// The canonical text of a void-and-cluster kind's own fields, field by field: `sigma`,
+/// `initial_density` (`blue2d`, `independent2d`, `golden`); `sigma_xy`, `sigma_t`,
+/// `initial_density`, `histogram` (`stbn`); `groups` (`[{axes=[…],sigma=…},…]`), `toroidal`
+/// (one `true`/`false` per axis), `initial_density`, `histogram` (`vac`); nothing (`white`).
+/// `None` for other kinds.
+pub(super) fn canonical(kind: &Kind) -> Option<String> {
+    use super::canonical::num;
+    let h = |h: &super::Histogram| match h {
+        super::Histogram::Slice => "slice",
+        super::Histogram::Volume => "volume",
+    };
+    Some(match kind {
+        Kind::Blue2d {
+            sigma,
+            initial_density,
+        }
+        | Kind::Independent2d {
+            sigma,
+            initial_density,
+        }
+        | Kind::Golden {
+            sigma,
+            initial_density,
+        } => format!("sigma={};initial_density={}", num(*sigma), num(*initial_density)),
+        Kind::Stbn {
+            sigma_xy,
+            sigma_t,
+            initial_density,
+            histogram,
+        } => format!(
+            "sigma_xy={};sigma_t={};initial_density={};histogram={}",
+            num(*sigma_xy),
+            num(*sigma_t),
+            num(*initial_density),
+            h(histogram)
+        ),
+        Kind::Vac {
+            groups,
+            toroidal,
+            initial_density,
+            histogram,
+        } => {
+            let g: Vec<String> = groups
+                .iter()
+                .map(|g| {
+                    let axes: Vec<String> = g.axes.iter().map(usize::to_string).collect();
+                    format!("{{axes=[{}],sigma={}}}", axes.join(","), num(g.sigma))
+                })
+                .collect();
+            let t: Vec<&str> = toroidal
+                .iter()
+                .map(|&b| if b { "true" } else { "false" })
+                .collect();
+            format!(
+                "groups=[{}];toroidal=[{}];initial_density={};histogram={}",
+                g.join(","),
+                t.join(","),
+                num(*initial_density),
+                h(histogram)
+            )
+        }
+        Kind::White => String::new(),
+        Kind::Fast(_) => return None,
+    })
+}

@@ -51,22 +51,6 @@ use crate::generate::rng::{SplitMix64, derive_seed};
 pub const MAX_ROUNDS: u32 = 40;
 
 impl FastParams {
-    /// The canonical form of the parameters (part of the cache key).
-    pub fn canonical(&self) -> String {
-        format!(
-            "sample_space={};distribution={:?};spatial={:?};temporal={:?};combine={:?};iterations={:?}",
-            self.sample_space.name(),
-            self.distribution,
-            self.spatial,
-            self.temporal,
-            self.combine,
-            self.iterations
-        ) + match self.start {
-            Start::Random => ";start=random",
-            Start::Ign => ";start=ign",
-        }
-    }
-
     /// The footprint of `F` on a texture of `dims` (x, y[, t]).
     pub fn footprint(&self, dims: &[usize]) -> Footprint {
         Footprint::new(dims3(dims), self.spatial, self.temporal, self.combine)
