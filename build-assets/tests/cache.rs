@@ -874,3 +874,43 @@ fn fallback_hits_are_promoted_into_the_cache_directory() {
         std::fs::read(Cache::path_in(&dir.join("fallback"), &s)).unwrap()
     );
 }
+
+/// An intact entry whose spec text is in another canonical format (the pre-0.1 `Debug` form),
+/// under the key this version would give that text, is stale: no build asks for that text.
+#[test]
+fn entries_of_another_canonical_format_are_stale() {
+    use build_assets::cache::{fnv64, fnv128, tidy};
+    let dir = tmp("oldformat");
+    let text = "kind=fast;dims=[16,16,4];seed=0;format=u8;sample_space=scalar;distribution=Uniform;spatial=Gauss { sigma: 1.3435 };temporal=Ema { alpha: 0.1, beta: 0.1 };combine=Product;iterations=None;start=ign";
+    let data = vec![7u8; 16 * 16 * 4];
+    let mut bytes = b"NBAKE\x00\x02\x00".to_vec();
+    for v in [
+        data.len() as u64,
+        fnv64(&data),
+        text.len() as u64,
+        fnv64(text.as_bytes()),
+    ] {
+        bytes.extend_from_slice(&v.to_le_bytes());
+    }
+    bytes.resize(build_assets::cache::HEADER, 0);
+    bytes.extend_from_slice(&data);
+    bytes.extend_from_slice(text.as_bytes());
+    let key = format!(
+        "{:032x}",
+        fnv128(format!("v{};{text}", build_assets::ALGORITHM_VERSION).as_bytes())
+    );
+    std::fs::write(dir.join(format!("{key}.nbk")), &bytes).unwrap();
+    let (held, status) = tidy::check(&key, &bytes);
+    assert_eq!(status, tidy::Status::Stale);
+    assert_eq!(held.as_deref(), Some(text));
+    // A current entry of the same texture is valid.
+    let s = spec("kind = \"fast\"\ndims = [16, 16, 4]\niterations = 1");
+    let e = Cache::new(&dir)
+        .get_or_insert_with(&s, || generate(&s, &mut |_, _| {}))
+        .unwrap();
+    let fresh = std::fs::read(e.path.unwrap()).unwrap();
+    assert_eq!(
+        tidy::check(&build_assets::cache::key(&s), &fresh).1,
+        tidy::Status::Valid
+    );
+}

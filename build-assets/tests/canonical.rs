@@ -125,7 +125,11 @@ fn canonical_texts_and_keys_are_pinned() {
     let mut got = String::new();
     for (body, _, _) in PINS {
         let s = spec(body);
-        got += &format!("    (\n        {body:?},\n        {:?},\n        {:?},\n    ),\n", s.canonical(), key(&s));
+        got += &format!(
+            "    (\n        {body:?},\n        {:?},\n        {:?},\n    ),\n",
+            s.canonical(),
+            key(&s)
+        );
     }
     if std::env::var_os("NOISEBAKE_PRINT_PINS").is_some() {
         println!("{got}");
@@ -153,9 +157,30 @@ fn defaults_written_out_change_nothing() {
     ] {
         assert_eq!(spec(short).canonical(), spec(long).canonical());
     }
-    let renamed = build_assets::spec::parse_toml("[[texture]]\nname = \"OTHER\"\nkind = \"white\"\ndims = [4]\n")
-        .unwrap()
-        .textures
-        .remove(0);
-    assert_eq!(renamed.canonical(), spec("kind = \"white\"\ndims = [4]").canonical());
+    let renamed = build_assets::spec::parse_toml(
+        "[[texture]]\nname = \"OTHER\"\nkind = \"white\"\ndims = [4]\n",
+    )
+    .unwrap()
+    .textures
+    .remove(0);
+    assert_eq!(
+        renamed.canonical(),
+        spec("kind = \"white\"\ndims = [4]").canonical()
+    );
+}
+
+/// Every pinned canonical text reads back to its spec: `to_spec` then `canonical` is the
+/// identity, which is how `cache verify` knows an entry's text is this version's.
+#[test]
+fn canonical_text_reads_back() {
+    for (_, text, _) in PINS {
+        let back =
+            build_assets::spec::canonical::to_spec(text).unwrap_or_else(|e| panic!("{text}: {e}"));
+        assert_eq!(back.canonical(), *text);
+    }
+    // Text in the pre-0.1 Debug form does not.
+    assert!(build_assets::spec::canonical::to_spec(
+        "kind=fast;dims=[16,16,4];seed=0;format=u8;sample_space=scalar;distribution=Uniform;spatial=Gauss { sigma: 1.3435 }"
+    )
+    .is_err());
 }

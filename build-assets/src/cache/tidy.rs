@@ -16,8 +16,9 @@
 //!   the directory commits its entries and nothing else.
 //! - **Verification without the spec.** An entry carries its canonical spec, so its key can be
 //!   recomputed: an entry whose header, lengths or hashes fail is corrupt; one whose key is not
-//!   this generator's (another [`ALGORITHM_VERSION`]) is stale — valid, but no build of this
-//!   version reads it.
+//!   this generator's (another [`ALGORITHM_VERSION`]), or whose spec text does not read back
+//!   to itself ([`crate::spec::canonical::to_spec`]: another canonical format), is stale —
+//!   intact, but no build of this version reads it.
 
 use super::{Corrupt, fnv128};
 use crate::generate::ALGORITHM_VERSION;
@@ -123,8 +124,15 @@ pub fn check(key: &str, bytes: &[u8]) -> (Option<String>, Status) {
         "{:032x}",
         fnv128(format!("v{ALGORITHM_VERSION};{canon}").as_bytes())
     );
+    let current = || crate::spec::canonical::to_spec(canon).is_ok_and(|s| s.canonical() == canon);
     let status = if this == key {
-        Status::Valid
+        // Keyed for this version, but written in another canonical format (before 0.1.0):
+        // no build of this version asks for that text.
+        if current() {
+            Status::Valid
+        } else {
+            Status::Stale
+        }
     } else if (0..ALGORITHM_VERSION)
         .any(|v| format!("{:032x}", fnv128(format!("v{v};{canon}").as_bytes())) == key)
     {

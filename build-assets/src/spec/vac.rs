@@ -241,7 +241,11 @@ pub(super) fn canonical(kind: &Kind) -> Option<String> {
         | Kind::Golden {
             sigma,
             initial_density,
-        } => format!("sigma={};initial_density={}", num(*sigma), num(*initial_density)),
+        } => format!(
+            "sigma={};initial_density={}",
+            num(*sigma),
+            num(*initial_density)
+        ),
         Kind::Stbn {
             sigma_xy,
             sigma_t,
