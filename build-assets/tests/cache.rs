@@ -1,11 +1,10 @@
 //! The cache: hits, misses, key changes, corruption, offline mode, concurrency, fallbacks, and
 //! `bake()` end to end.
 
-mod common;
 use build_assets::cache::{Cache, Corrupt, Locator, Source, decode, encode};
 use build_assets::{Bake, generate};
 use build_assets::{Error, Warning};
-use common::spec;
+use noisebake_test_support::bake::spec;
 use std::path::PathBuf;
 
 fn tmp(name: &str) -> PathBuf {

@@ -3,9 +3,8 @@
 //! every cache (committed ones included), so it must be a visible, deliberate break (bump the
 //! pins and say so in CHANGELOG.md).
 
-mod common;
 use build_assets::cache::key;
-use common::spec;
+use noisebake_test_support::bake::spec;
 
 const PINS: &[(&str, &str, &str)] = &[
     (

@@ -1,10 +1,9 @@
 //! Same spec, same bytes: across runs, thread counts, and (through the golden digests below)
 //! debug and release builds and machines.
 
-mod common;
 use build_assets::cache::fnv64 as fnv;
 use build_assets::generate;
-use common::spec;
+use noisebake_test_support::bake::spec;
 
 const SPECS: &[&str] = &[
     "kind = \"blue2d\"\ndims = [32, 32]\nseed = 1\nformat = \"u16\"",

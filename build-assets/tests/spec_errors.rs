@@ -1,7 +1,6 @@
 //! Bad specs are errors that name the key, point at it, and never panic or allocate first.
 
-mod common;
-use common::{error, spec};
+use noisebake_test_support::bake::{error, spec};
 
 fn has(msg: &str, parts: &[&str]) {
     for p in parts {

@@ -3,16 +3,7 @@
 
 use noise_runtime::cnj::*;
 
-struct Rng(u64);
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use noisebake_test_support::Rng;
 
 #[test]
 fn max_displacement_2d_is_within_the_two_ring_guarantee() {
@@ -43,7 +34,7 @@ fn closest_and_k_nearest_2d_match_brute_force() {
         }
         let mut rng = Rng(seed as u64 + 1);
         for _ in 0..8_000 {
-            let x = [rng.unit() * 20.0 - 10.0, rng.unit() * 16.0 - 8.0];
+            let x = [rng.unit_f64() * 20.0 - 10.0, rng.unit_f64() * 16.0 - 8.0];
             let mut d: Vec<(f64, [i32; 2])> = pts
                 .iter()
                 .map(|(p, s)| (((p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2)).sqrt(), *s))
@@ -67,7 +58,10 @@ fn region_queries_equal_direct_queries() {
     let r = c.region([0.0, 0.0], [64.0, 48.0], &mut buf).unwrap();
     let mut rng = Rng(3);
     for _ in 0..2000 {
-        let x = [(rng.unit() * 64.0) as f32, (rng.unit() * 48.0) as f32];
+        let x = [
+            (rng.unit_f64() * 64.0) as f32,
+            (rng.unit_f64() * 48.0) as f32,
+        ];
         let (a, b) = (r.k_nearest::<4>(x), c.k_nearest::<4>(x));
         for n in 0..4 {
             assert_eq!(a[n].site, b[n].site);
@@ -95,13 +89,13 @@ fn velocity_fields_are_divergence_free() {
     let mut rng = Rng(9);
     let h = 1e-3;
     for _ in 0..200 {
-        let p = [rng.unit() * 50.0, rng.unit() * 50.0];
+        let p = [rng.unit_f64() * 50.0, rng.unit_f64() * 50.0];
         let v = |q: [f64; 2]| velocity2(q, 2.86207, 0);
         let div = (v([p[0] + h, p[1]])[0] - v([p[0] - h, p[1]])[0] + v([p[0], p[1] + h])[1]
             - v([p[0], p[1] - h])[1]) as f64
             / (2.0 * h);
         assert!(div.abs() < 2e-2, "2D divergence {div}");
-        let q = [p[0], p[1], rng.unit() * 50.0];
+        let q = [p[0], p[1], rng.unit_f64() * 50.0];
         let w = |q: [f64; 3]| velocity3(q, 2.5, 0);
         let mut div3 = 0.0;
         for a in 0..3 {
@@ -160,7 +154,7 @@ fn displacement_3d_stays_below_its_bound_and_queries_are_exact() {
         }
         let mut rng = Rng(5);
         for _ in 0..300 {
-            let x = [0, 1, 2].map(|_| rng.unit() * 6.0 - 3.0);
+            let x = [0, 1, 2].map(|_| rng.unit_f64() * 6.0 - 3.0);
             let mut d: Vec<(f64, [i32; 4])> = pts
                 .iter()
                 .map(|(p, s)| {

@@ -5,20 +5,7 @@
 use noise_runtime::stochastic::*;
 use proptest::prelude::*;
 
-/// SplitMix64 for reproducible test inputs.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next() >> 40) as f32 / (1u64 << 24) as f32
-    }
-}
+use noisebake_test_support::Rng;
 
 type Pair = (&'static str, fn([f32; 3]) -> f32, fn([f32; 3], f32) -> f32);
 
@@ -147,14 +134,14 @@ fn points(rng: &mut Rng) -> Vec<[f32; 3]> {
     let mut pts = Vec::new();
     for _ in 0..30 {
         pts.push([
-            rng.unit() * 40.0 - 20.0,
-            rng.unit() * 40.0 - 20.0,
-            rng.unit() * 40.0 - 20.0,
+            rng.unit_f32() * 40.0 - 20.0,
+            rng.unit_f32() * 40.0 - 20.0,
+            rng.unit_f32() * 40.0 - 20.0,
         ]);
     }
     for k in 0..10 {
         let base = (k as f32 - 5.0) * 3.0;
-        let e = 1e-3 * rng.unit();
+        let e = 1e-3 * rng.unit_f32();
         pts.push([base + e, base - 2.0 + e, 7.0 - e]); // near a lattice point
         pts.push([base + 0.5, base + 0.5, 0.5]); // cell centre (smooth Voronoi's 2×2×2 border)
         pts.push([base + 0.999, 2.0 + 0.9999, 0.25]); // fade rounds to 1 in f32
@@ -185,7 +172,7 @@ fn every_estimator_is_unbiased() {
             };
             let (mut s, mut s2) = (0.0f64, 0.0f64);
             for _ in 0..n {
-                let v = sto(*p, rng.unit()) as f64;
+                let v = sto(*p, rng.unit_f32()) as f64;
                 s += v;
                 s2 += v * v;
             }
@@ -240,7 +227,11 @@ fn lerp_and_roulette_building_blocks_are_unbiased() {
 fn perlin_gradient_matches_finite_differences() {
     let mut rng = Rng(9);
     for _ in 0..200 {
-        let p = [rng.unit() * 10.0, rng.unit() * 10.0, rng.unit() * 10.0];
+        let p = [
+            rng.unit_f32() * 10.0,
+            rng.unit_f32() * 10.0,
+            rng.unit_f32() * 10.0,
+        ];
         let (v, g) = Perlin::new(1).gradient(p);
         assert!((v - Perlin::new(1).sample(p)).abs() < 1e-5);
         let h = 1e-2f32;
@@ -264,7 +255,7 @@ fn perlin_gradient_matches_finite_differences() {
                 g2[a]
             );
         }
-        let p4 = [p[0], p[1], p[2], rng.unit() * 10.0 - 5.0];
+        let p4 = [p[0], p[1], p[2], rng.unit_f32() * 10.0 - 5.0];
         let (v4, g4) = Perlin::new(1).gradient(p4);
         assert!(
             (v4 - Perlin::new(1).sample(p4)).abs() < 1e-5,
@@ -316,7 +307,7 @@ fn simplex_gradient_matches_finite_differences() {
     }
     let mut rng = Rng(10);
     for _ in 0..300 {
-        let p: [f32; 4] = std::array::from_fn(|_| rng.unit() * 20.0 - 10.0);
+        let p: [f32; 4] = std::array::from_fn(|_| rng.unit_f32() * 20.0 - 10.0);
         check(
             "simplex2",
             [p[0], p[1]],
@@ -344,9 +335,9 @@ fn worley_f1_is_the_true_nearest_point() {
     let mut rng = Rng(4);
     for _ in 0..2000 {
         let p = [
-            rng.unit() * 50.0 - 25.0,
-            rng.unit() * 50.0 - 25.0,
-            rng.unit() * 50.0 - 25.0,
+            rng.unit_f32() * 50.0 - 25.0,
+            rng.unit_f32() * 50.0 - 25.0,
+            rng.unit_f32() * 50.0 - 25.0,
         ];
         let c = p.map(|x| x.floor() as i32);
         let mut best = f32::MAX;
@@ -378,7 +369,7 @@ fn smooth_voronoi_is_eq_12_within_3e7() {
     let mut worst = 0.0f64;
     for k in 0..40_000 {
         let half = if k % 2 == 0 { 2.0 } else { 50.0 };
-        let p = [0; 3].map(|_| (rng.unit() * 2.0 - 1.0) * half);
+        let p = [0; 3].map(|_| (rng.unit_f32() * 2.0 - 1.0) * half);
         let c = p.map(|x| x.floor() as i32);
         let mut sum = 0.0f64;
         for dz in -1..=1 {

@@ -14,14 +14,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 fn queries(n: usize, scale: f32) -> Vec<[f32; 3]> {
-    let mut s = 0x51_7cc1_b727_220au64;
-    let mut next = move || {
-        s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = s;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 40) as f32 / 16_777_216.0 * scale
-    };
+    let mut rng = noisebake_test_support::Rng(0x51_7cc1_b727_220a);
+    let mut next = move || rng.unit_f32() * scale;
     (0..n).map(|_| [next(), next(), next()]).collect()
 }
 

@@ -20,14 +20,8 @@ use std::time::Duration;
 const N: usize = 1 << 16;
 
 fn points() -> (Vec<[f32; 3]>, Vec<f32>) {
-    let mut s = 0x1234_5678_9abc_def0u64;
-    let mut next = move || {
-        s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = s;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 40) as f32 / 16_777_216.0
-    };
+    let mut rng = noisebake_test_support::Rng(0x1234_5678_9abc_def0);
+    let mut next = move || rng.unit_f32();
     let pts = (0..N)
         .map(|_| {
             [

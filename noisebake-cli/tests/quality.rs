@@ -1,12 +1,10 @@
 //! Quality of the masks, measured as ARCHITECTURE.md says: spatial and temporal low-frequency power,
 //! per-slice histograms and per-pixel convergence (STBN §4.2, Fig. 5, 6, 8).
 
-#[path = "../../build-assets/tests/common/mod.rs"]
-mod common;
 use build_assets::export::png::read_gray;
 use build_assets::generate::blue2d_ranks;
-use common::{gen_tex, testdata};
 use noisebake_cli::analysis::{MaskReport, analyze, spatial_lf};
+use noisebake_test_support::bake::{gen_tex, testdata};
 
 fn report(kind: &str, extra: &str) -> MaskReport {
     analyze(&gen_tex(&format!(

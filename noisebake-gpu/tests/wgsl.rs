@@ -27,31 +27,16 @@ fn gpu() -> Option<&'static Gpu> {
 /// Inputs per function.
 const N: usize = 1 << 18;
 
-/// SplitMix64: the test's own reproducible random numbers.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn i32(&mut self) -> i32 {
-        self.next() as i32
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    /// An i32 from a mix of scales: extremes, small, medium, any.
-    fn coord(&mut self) -> i32 {
-        const EDGE: [i32; 7] = [i32::MIN, i32::MIN + 1, -1, 0, 1, i32::MAX - 1, i32::MAX];
-        match self.next() % 4 {
-            0 => EDGE[(self.next() % 7) as usize],
-            1 => (self.next() % 512) as i32 - 256,
-            2 => (self.next() % 2_000_000) as i32 - 1_000_000,
-            _ => self.i32(),
-        }
+use noisebake_test_support::Rng;
+
+/// An i32 from a mix of scales: extremes, small, medium, any.
+fn coord(rng: &mut Rng) -> i32 {
+    const EDGE: [i32; 7] = [i32::MIN, i32::MIN + 1, -1, 0, 1, i32::MAX - 1, i32::MAX];
+    match rng.next_u64() % 4 {
+        0 => EDGE[(rng.next_u64() % 7) as usize],
+        1 => (rng.next_u64() % 512) as i32 - 256,
+        2 => (rng.next_u64() % 2_000_000) as i32 - 1_000_000,
+        _ => rng.i32(),
     }
 }
 
@@ -132,7 +117,14 @@ fn integer_functions_match_bit_for_bit() {
     let Some(g) = gpu() else { return };
     let mut rng = Rng(1);
     let inputs: Vec<[i32; 4]> = (0..N)
-        .map(|_| [rng.coord(), rng.coord(), rng.coord(), rng.coord()])
+        .map(|_| {
+            [
+                coord(&mut rng),
+                coord(&mut rng),
+                coord(&mut rng),
+                coord(&mut rng),
+            ]
+        })
         .collect();
     let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
     const OUT: usize = 16;
@@ -232,7 +224,7 @@ fn ign_matches_within_two_to_the_minus_23() {
     let Some(g) = gpu() else { return };
     let mut rng = Rng(2);
     let inputs: Vec<[i32; 4]> = (0..N)
-        .map(|_| [rng.coord(), rng.coord(), rng.i32(), 0])
+        .map(|_| [coord(&mut rng), coord(&mut rng), rng.i32(), 0])
         .collect();
     let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
     let kernel = kernel(
@@ -273,18 +265,18 @@ fn noise_inputs(seed: u64) -> Vec<[f32; 4]> {
     let mut rng = Rng(seed);
     (0..N)
         .map(|i| {
-            let mut c = || match rng.next() % 4 {
-                0 => rng.unit() * 8.0 - 4.0,
+            let mut c = || match rng.next_u64() % 4 {
+                0 => rng.unit_f32() * 8.0 - 4.0,
                 1 => {
-                    let k = (rng.next() % 200) as f32 - 100.0;
-                    [k, (k + 1.0).next_down(), k + 0.5][(rng.next() % 3) as usize]
+                    let k = (rng.next_u64() % 200) as f32 - 100.0;
+                    [k, (k + 1.0).next_down(), k + 0.5][(rng.next_u64() % 3) as usize]
                 }
-                _ => (rng.unit() * 2.0 - 1.0) * 4096.0,
+                _ => (rng.unit_f32() * 2.0 - 1.0) * 4096.0,
             };
             let p = [c(), c(), c()];
             let xi = match i % 64 {
                 0 => [0.0, 1.0, -0.5, 1.5, f32::NAN][(i / 64) % 5],
-                _ => rng.unit(),
+                _ => rng.unit_f32(),
             };
             [p[0], p[1], p[2], xi]
         })
@@ -401,8 +393,8 @@ fn cnj_closest_point_matches() {
     let queries: Vec<[f32; 2]> = (0..N / 4)
         .map(|_| {
             [
-                (rng.unit() * 2.0 - 1.0) * 256.0,
-                (rng.unit() * 2.0 - 1.0) * 256.0,
+                (rng.unit_f32() * 2.0 - 1.0) * 256.0,
+                (rng.unit_f32() * 2.0 - 1.0) * 256.0,
             ]
         })
         .collect();
@@ -467,9 +459,9 @@ fn check_mask_format<T: noisebake::Texel>(g: &Gpu, seed: u64) {
     let cb = T::BYTES / T::CHANNELS;
     let bytes: Vec<u8> = (0..n / cb)
         .flat_map(|_| match cb {
-            4 => rng.unit().to_le_bytes().to_vec(),
-            2 => (rng.next() as u16).to_le_bytes().to_vec(),
-            _ => vec![rng.next() as u8],
+            4 => rng.unit_f32().to_le_bytes().to_vec(),
+            2 => (rng.next_u64() as u16).to_le_bytes().to_vec(),
+            _ => vec![rng.next_u64() as u8],
         })
         .collect();
     let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
@@ -483,10 +475,10 @@ fn check_mask_format<T: noisebake::Texel>(g: &Gpu, seed: u64) {
     let inputs: Vec<[i32; 4]> = (0..N / 16)
         .map(|_| {
             [
-                rng.coord(),
-                rng.coord(),
-                rng.coord(),
-                (rng.next() % 4096) as i32,
+                coord(&mut rng),
+                coord(&mut rng),
+                coord(&mut rng),
+                (rng.next_u64() % 4096) as i32,
             ]
         })
         .collect();

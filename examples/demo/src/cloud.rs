@@ -30,18 +30,8 @@ use noisebake::stochastic::{Fbm, Fractal, SparseConvolutionFbm};
 use rayon::prelude::*;
 use std::path::Path;
 
-/// Per-pixel random numbers (SplitMix64).
-pub struct Rng(pub u64);
-impl Rng {
-    /// A uniform number in `[0, 1)`.
-    pub fn uniform(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 40) as f32 / 16_777_216.0
-    }
-}
+/// Per-pixel random numbers: the generator's SplitMix64 (`unit_f32` for a uniform in `[0, 1)`).
+pub type Rng = build_assets::generate::rng::SplitMix64;
 
 /// How a scene evaluates its noise.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -154,7 +144,7 @@ pub fn render(scene: &dyn Scene, v: Variant, spp: usize, seed: u64) -> Vec<f32> 
 
 fn pixel(scene: &dyn Scene, v: Variant, spp: usize, seed: u64, i: usize) -> f32 {
     let n = scene.size();
-    let mut rng = Rng(seed ^ (i as u64).wrapping_mul(0x2545_f491_4f6c_dd1d));
+    let mut rng = Rng::new(seed ^ (i as u64).wrapping_mul(0x2545_f491_4f6c_dd1d));
     (0..spp)
         .map(|s| scene.sample(i % n, i / n, s, &mut rng, v))
         .sum::<f32>()
@@ -234,7 +224,7 @@ fn ball_fbm(
     }
     let q = p.map(|c| c * CLOUD_SCALE);
     let foot = CLOUD_SCALE / size as f32;
-    shape * (1.0 + fbm(basis, v, q, f, foot, seed, &mut || rng.uniform()))
+    shape * (1.0 + fbm(basis, v, q, f, foot, seed, &mut || rng.unit_f32()))
 }
 
 /// The demo's cloud: single scattering, ratio tracking (see the module docs).
@@ -261,7 +251,7 @@ impl SingleScatter {
         };
         let mut tr = 1.0;
         loop {
-            t -= (1.0 - rng.uniform()).ln() / CLOUD_MAJORANT;
+            t -= (1.0 - rng.unit_f32()).ln() / CLOUD_MAJORANT;
             if t >= end {
                 return tr;
             }
@@ -280,9 +270,9 @@ impl Scene for SingleScatter {
     }
     /// A uniform point along the ray, σ_s there, and the transmittance to the eye and the light.
     fn sample(&self, x: usize, y: usize, _: usize, rng: &mut Rng, v: Variant) -> f32 {
-        let u = (x as f32 + rng.uniform()) / self.size as f32;
-        let w = (y as f32 + rng.uniform()) / self.size as f32;
-        let t = rng.uniform();
+        let u = (x as f32 + rng.unit_f32()) / self.size as f32;
+        let w = (y as f32 + rng.unit_f32()) / self.size as f32;
+        let t = rng.unit_f32();
         let p = [u, w, t];
         let sigma = self.density(p, rng, v);
         if sigma == 0.0 {
@@ -359,7 +349,7 @@ impl PaperCloud {
         let bar = self.sigma_bar(v);
         let mut tr = 1.0f32;
         loop {
-            t -= (1.0 - rng.uniform()).ln() / bar;
+            t -= (1.0 - rng.unit_f32()).ln() / bar;
             if t >= end || tr == 0.0 {
                 return tr;
             }
@@ -392,8 +382,8 @@ impl Scene for PaperCloud {
     /// by σ/(σ̄ p)), next-event estimation of the sun at every real collision, isotropic phase.
     fn sample(&self, x: usize, y: usize, _: usize, rng: &mut Rng, v: Variant) -> f32 {
         let mut o = [
-            (x as f32 + rng.uniform()) / self.size as f32,
-            (y as f32 + rng.uniform()) / self.size as f32,
+            (x as f32 + rng.unit_f32()) / self.size as f32,
+            (y as f32 + rng.unit_f32()) / self.size as f32,
             0.0,
         ];
         let mut d = [0.0f32, 0.0, 1.0];
@@ -407,7 +397,7 @@ impl Scene for PaperCloud {
             };
             let mut scattered = false;
             loop {
-                t -= (1.0 - rng.uniform()).ln() / bar;
+                t -= (1.0 - rng.unit_f32()).ln() / bar;
                 if t >= end {
                     break;
                 }
@@ -415,13 +405,13 @@ impl Scene for PaperCloud {
                 let sigma = self.density(p, rng, v);
                 let null = bar - sigma;
                 let p_real = sigma.abs() / (sigma.abs() + null.abs()).max(1e-30);
-                if rng.uniform() < p_real {
+                if rng.unit_f32() < p_real {
                     // Sun by next-event estimation, then an isotropic scattering.
                     weight *= sigma / (bar * p_real) * ALBEDO;
                     radiance += weight * phase * SUN_RADIANCE * self.shadow(p, rng, v);
-                    let z = 1.0 - 2.0 * rng.uniform();
+                    let z = 1.0 - 2.0 * rng.unit_f32();
                     let r = (1.0 - z * z).max(0.0).sqrt();
-                    let a = 2.0 * std::f32::consts::PI * rng.uniform();
+                    let a = 2.0 * std::f32::consts::PI * rng.unit_f32();
                     d = [r * a.cos(), r * a.sin(), z];
                     o = p;
                     scattered = true;

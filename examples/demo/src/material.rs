@@ -60,7 +60,7 @@ impl Material {
     /// The `k`-th number of pixel `(x, y)` in frame `s`.
     fn number(&self, x: usize, y: usize, s: usize, k: u32, rng: &mut Rng) -> f32 {
         match self.xi {
-            Xi::White => rng.uniform(),
+            Xi::White => rng.unit_f32(),
             Xi::Stbn => STBN.get_k_unit(x as i32, y as i32, s as i32, k + 8 * (s / 64) as u32),
         }
     }
@@ -110,9 +110,9 @@ impl Scene for Material {
         let xi = match self.xi {
             Xi::Stbn => {
                 let b = self.number(x, y, s, 4, rng);
-                ((b * 256.0).floor() + rng.uniform()) / 256.0
+                ((b * 256.0).floor() + rng.unit_f32()) / 256.0
             }
-            Xi::White => rng.uniform(),
+            Xi::White => rng.unit_f32(),
         };
         let q = [p[0] * SCALE, 0.37, p[2] * SCALE];
         let noise = fbm(Basis::Perlin, v, q, FBM, footprint, 9, &mut || xi);

@@ -13,7 +13,7 @@ fn pixels(scene: &dyn Scene, v: Variant, spp: usize, seed: u64) -> Vec<(f64, f64
     let n = scene.size();
     (0..n * n)
         .map(|i| {
-            let mut rng = Rng(seed ^ (i as u64).wrapping_mul(0x2545_f491_4f6c_dd1d));
+            let mut rng = Rng::new(seed ^ (i as u64).wrapping_mul(0x2545_f491_4f6c_dd1d));
             let (mut s, mut s2) = (0.0f64, 0.0f64);
             for k in 0..spp {
                 let x = scene.sample(i % n, i / n, k, &mut rng, v) as f64;
