@@ -1,8 +1,11 @@
 //! Batch forms: 3D Perlin noise and its fBm, deterministic and as estimators, over a slice of
-//! points at once, eight points sharing each instruction as the pixels of a GPU warp do: one
-//! kernel per function over the lane layer's eight-lane operations, compiled for AVX2 on an
-//! x86_64 CPU that has it (asked once at run time) and portably elsewhere. Either way each output is, **bit for bit**, what the single-point
-//! function returns for that point (and ξ), so a renderer can switch freely between them.
+//! points at once, eight points sharing each instruction as the pixels of a GPU warp do. This
+//! module is what every batch kernel shares: the lane backend a call runs on ([`Path`]: AVX2 on
+//! an x86_64 CPU that has it, asked once at run time, portably elsewhere), the one AVX2
+//! dispatch ([`on_lanes!`]), and the chunk loop with its exact per-lane fallback. The kernels
+//! live with their noise: `perlin/batch.rs`, `fractal/batch.rs`. Either way each output is,
+//! **bit for bit**, what the single-point function returns for that point (and ξ), so a
+//! renderer can switch freely between them.
 //!
 //! What the batch buys is the absolute time (`noisebake report stochastic` prints each batch
 //! form's time and its ratio to the single-point form): on lanes the deterministic form's eight
@@ -11,8 +14,8 @@
 //! over the deterministic form grows only a little.
 //!
 //! The noise types' batch verbs check that their slices agree in length
-//! ([`BatchLengths`](super::BatchLengths)); the functions here evaluate the first `min` of the
-//! lengths and return that count.
+//! ([`BatchLengths`](super::BatchLengths)); the kernels' entry points evaluate the first `min`
+//! of the lengths and return that count.
 //!
 //! ```
 //! use noise_runtime::stochastic::{Fbm, Fractal};
@@ -29,13 +32,62 @@
 //! // A ξ short is an error, not a silently shorter run.
 //! assert!(fbm.estimate_batch(&points, &xi[..99], &mut out).is_err());
 //! ```
+//!
+//! The kernels are `#[inline(always)]` and generic over the [`Lanes8`] implementation, so each
+//! is compiled inside each entry point: inside a `#[target_feature(enable = "avx2")]` one with
+//! the [`Avx2`](crate::lanes::avx2::Avx2) token, and inside the portable one with
+//! [`Portable8`]. A lane whose coordinates leave the split range (`|x| ≥ 2^22`, NaN, infinite)
+//! is computed again by the single-point function, which handles it exactly.
 
-use super::fractal::{Fractal, fbm3, fbm3_stochastic};
-use super::perlin::{perlin3, perlin3_stochastic};
+use crate::lanes::{F8, Lanes8, U8};
+use crate::math::split_in_range;
 
-use crate::lanes::scalar::Portable8;
+pub(crate) use crate::lanes::scalar::Portable8;
 
-mod kernels;
+/// Lanes per register.
+pub(crate) const W: usize = 8;
+/// The fixed-point 1 of the corner choice (`estimators::Narrowing`).
+pub(crate) const ONE: u32 = 1 << 23;
+
+/// Eight points as three coordinate registers.
+#[inline(always)]
+pub(crate) fn columns(p: &[[f32; 3]; W]) -> [F8; 3] {
+    let mut c = [[0.0f32; W]; 3];
+    for i in 0..W {
+        for a in 0..3 {
+            c[a][i] = p[i][a];
+        }
+    }
+    c
+}
+
+/// Bit `i` set when lane `i` of `p` is outside the split range (the test of
+/// [`in_split_range`](crate::math::in_split_range), lane by lane).
+#[inline(always)]
+pub(crate) fn outside<L: Lanes8>(cpu: L, p: &[F8; 3]) -> u32 {
+    let mut any = [0u32; W];
+    for c in p {
+        for i in 0..W {
+            any[i] |= (c[i].to_bits() & 0x7fff_ffff).wrapping_add(0x8000_0000 - 0x4a80_0000);
+        }
+    }
+    cpu.sign_bits(any)
+}
+
+/// Cells (as `u32`) and offsets of every lane by [`split_in_range`].
+#[inline(always)]
+pub(crate) fn split(p: &[F8; 3]) -> ([U8; 3], [F8; 3]) {
+    let mut cell = [[0u32; W]; 3];
+    let mut f = [[0.0f32; W]; 3];
+    for a in 0..3 {
+        for i in 0..W {
+            let (c, fa) = split_in_range(p[a][i]);
+            cell[a][i] = c as u32;
+            f[a][i] = fa;
+        }
+    }
+    (cell, f)
+}
 
 /// Which backend of the lane layer runs the batch kernels.
 #[derive(Clone, Copy, Debug)]
@@ -59,185 +111,101 @@ impl Path {
     }
 }
 
-/// The kernels compiled for AVX2: each entry point instantiates its kernel with the token, so
-/// that the whole kernel (every helper is `#[inline(always)]`) is compiled with the feature.
-#[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
-mod avx2 {
-    use super::kernels;
-    use crate::lanes::avx2::Avx2;
-    use crate::stochastic::Fractal;
-
-    #[target_feature(enable = "avx2")]
-    pub(super) fn perlin3(cpu: Avx2, points: &[[f32; 3]], seed: u32, out: &mut [f32]) {
-        kernels::perlin3(cpu, points, seed, out)
-    }
-
-    #[target_feature(enable = "avx2")]
-    pub(super) fn perlin3_stochastic(
-        cpu: Avx2,
-        points: &[[f32; 3]],
-        seed: u32,
-        xi: &[f32],
-        out: &mut [f32],
-    ) {
-        kernels::perlin3_stochastic(cpu, points, seed, xi, out)
-    }
-
-    #[target_feature(enable = "avx2")]
-    pub(super) fn fbm3(cpu: Avx2, points: &[[f32; 3]], f: Fractal, seed: u32, out: &mut [f32]) {
-        kernels::fbm3(cpu, points, f, seed, out)
-    }
-
-    #[target_feature(enable = "avx2")]
-    pub(super) fn fbm3_stochastic(
-        cpu: Avx2,
-        points: &[[f32; 3]],
-        f: Fractal,
-        seed: u32,
-        xi: &[f32],
-        out: &mut [f32],
-    ) {
-        kernels::fbm3_stochastic(cpu, points, f, seed, xi, out)
-    }
-}
-
-/// [`perlin3`] at every point: `out[i] = perlin3(points[i], seed)` for the
-/// first `min(points.len(), out.len())` points, whose count it returns.
-pub fn perlin3_batch(points: &[[f32; 3]], seed: u32, out: &mut [f32]) -> usize {
-    perlin3_batch_on(Path::best(), points, seed, out)
-}
-
-/// [`perlin3_stochastic`] at every point with its own ξ:
-/// `out[i] = perlin3_stochastic(points[i], seed, xi[i])` for the first `min` of the three
-/// lengths, whose count it returns.
-pub fn perlin3_stochastic_batch(
-    points: &[[f32; 3]],
-    seed: u32,
-    xi: &[f32],
-    out: &mut [f32],
-) -> usize {
-    perlin3_stochastic_batch_on(Path::best(), points, seed, xi, out)
-}
-
-/// [`fbm3`] at every point: `out[i] = fbm3(points[i], f, seed)` for the first
-/// `min(points.len(), out.len())` points, whose count it returns.
-pub fn fbm3_batch(points: &[[f32; 3]], f: Fractal, seed: u32, out: &mut [f32]) -> usize {
-    fbm3_batch_on(Path::best(), points, f, seed, out)
-}
-
-/// [`fbm3_stochastic`] at every point with its own ξ:
-/// `out[i] = fbm3_stochastic(points[i], f, seed, xi[i])` for the first `min` of the three
-/// lengths, whose count it returns. The lanes serve lacunarity 2 and gain ±½ (the paper's
-/// fBm); other parameters run one point at a time.
-pub fn fbm3_stochastic_batch(
-    points: &[[f32; 3]],
-    f: Fractal,
-    seed: u32,
-    xi: &[f32],
-    out: &mut [f32],
-) -> usize {
-    fbm3_stochastic_batch_on(Path::best(), points, f, seed, xi, out)
-}
-
-/// [`perlin3_batch`] on a chosen path (the tests run both).
-#[allow(unsafe_code)]
-pub(crate) fn perlin3_batch_on(
-    path: Path,
-    points: &[[f32; 3]],
-    seed: u32,
-    out: &mut [f32],
-) -> usize {
-    let n = points.len().min(out.len());
-    let (points, out) = (&points[..n], &mut out[..n]);
-    match path {
-        #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
-        // SAFETY: the token exists only on a CPU with AVX2 (`Avx2::detect`).
-        Path::Avx2(cpu) => unsafe { avx2::perlin3(cpu, points, seed, out) },
-        Path::Portable => kernels::perlin3(Portable8, points, seed, out),
-    }
-    n
-}
-
-/// [`perlin3_stochastic_batch`] on a chosen path.
-#[allow(unsafe_code)]
-pub(crate) fn perlin3_stochastic_batch_on(
-    path: Path,
-    points: &[[f32; 3]],
-    seed: u32,
-    xi: &[f32],
-    out: &mut [f32],
-) -> usize {
-    let n = points.len().min(xi.len()).min(out.len());
-    let (points, xi, out) = (&points[..n], &xi[..n], &mut out[..n]);
-    match path {
-        #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
-        // SAFETY: as in `perlin3_batch_on`.
-        Path::Avx2(cpu) => unsafe { avx2::perlin3_stochastic(cpu, points, seed, xi, out) },
-        Path::Portable => kernels::perlin3_stochastic(Portable8, points, seed, xi, out),
-    }
-    n
-}
-
-/// [`fbm3_batch`] on a chosen path.
-#[allow(unsafe_code)]
-pub(crate) fn fbm3_batch_on(
-    path: Path,
-    points: &[[f32; 3]],
-    f: Fractal,
-    seed: u32,
-    out: &mut [f32],
-) -> usize {
-    let n = points.len().min(out.len());
-    let (points, out) = (&points[..n], &mut out[..n]);
-    match path {
-        #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
-        // SAFETY: as in `perlin3_batch_on`.
-        Path::Avx2(cpu) => unsafe { avx2::fbm3(cpu, points, f, seed, out) },
-        Path::Portable => kernels::fbm3(Portable8, points, f, seed, out),
-    }
-    n
-}
-
-/// [`fbm3_stochastic_batch`] on a chosen path.
-#[allow(unsafe_code)]
-pub(crate) fn fbm3_stochastic_batch_on(
-    path: Path,
-    points: &[[f32; 3]],
-    f: Fractal,
-    seed: u32,
-    xi: &[f32],
-    out: &mut [f32],
-) -> usize {
-    let n = points.len().min(xi.len()).min(out.len());
-    let (points, xi, out) = (&points[..n], &xi[..n], &mut out[..n]);
-    match path {
-        #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
-        // SAFETY: as in `perlin3_batch_on`.
-        Path::Avx2(cpu) if halving(f) => unsafe {
-            avx2::fbm3_stochastic(cpu, points, f, seed, xi, out)
-        },
-        Path::Portable if halving(f) => {
-            kernels::fbm3_stochastic(Portable8, points, f, seed, xi, out)
-        }
-        _ => {
-            for ((o, &p), &x) in out.iter_mut().zip(points).zip(xi) {
-                *o = fbm3_stochastic(p, f, seed, x);
+/// Runs the batch kernel `$kernel(cpu, args…)` on `$path`: the one place the AVX2 entry point
+/// is written. It instantiates the generic kernel inside a `#[target_feature(enable =
+/// "avx2")]` function (so that the whole kernel, every helper being `#[inline(always)]`, is
+/// compiled with the feature) and calls it with the token that proves the CPU has AVX2; the
+/// portable path runs the same kernel with [`Portable8`]. The `unsafe` of that call is the only
+/// one of the runtime outside the lane layer.
+macro_rules! on_lanes {
+    ($path:expr, $kernel:ident($($arg:ident: $ty:ty),*)) => {{
+        match $path {
+            #[cfg(all(target_arch = "x86_64", not(feature = "portable")))]
+            $crate::stochastic::batch::Path::Avx2(cpu) => {
+                #[target_feature(enable = "avx2")]
+                fn entry(cpu: $crate::lanes::avx2::Avx2, $($arg: $ty),*) {
+                    $kernel(cpu, $($arg),*)
+                }
+                #[allow(unsafe_code)]
+                // SAFETY: the token exists only on a CPU with AVX2 (`Avx2::detect`).
+                unsafe {
+                    entry(cpu, $($arg),*)
+                }
+            }
+            $crate::stochastic::batch::Path::Portable => {
+                $kernel($crate::stochastic::batch::Portable8, $($arg),*)
             }
         }
-    }
-    n
+    }};
+}
+pub(crate) use on_lanes;
+
+/// The loop of every entry point: `$lanes` (an expression of the chunk's columns `$p`, and
+/// of its ξ `$x` when the entry point has them, giving the eight values and a mask of lanes
+/// outside the split range) over the points eight at a time; `$one` (an expression of the
+/// point's index `$i`) for each masked lane and for the points after the last whole chunk.
+macro_rules! chunks {
+    ($points:expr, $out:expr, |$p:ident| $lanes:expr, |$i:ident| $one:expr) => {{
+        let (points, out): (&[[f32; 3]], &mut [f32]) = ($points, $out);
+        let (chunks, _) = points.as_chunks::<W>();
+        let (outs, _) = out.as_chunks_mut::<W>();
+        for (k, (c, o)) in chunks.iter().zip(outs.iter_mut()).enumerate() {
+            let $p = columns(c);
+            let (v, bad): (F8, u32) = $lanes;
+            *o = v;
+            $crate::stochastic::batch::fix_lanes!(o, bad, k, |$i| $one);
+        }
+        for (n, o) in out.iter_mut().enumerate().skip(chunks.len() * W) {
+            let $i = n;
+            *o = $one;
+        }
+    }};
+    (
+        $points:expr, $xi:expr, $out:expr,
+        |$p:ident, $x:ident| $lanes:expr, |$i:ident| $one:expr
+    ) => {{
+        let (points, xi, out): (&[[f32; 3]], &[f32], &mut [f32]) = ($points, $xi, $out);
+        let (chunks, _) = points.as_chunks::<W>();
+        let (xis, _) = xi.as_chunks::<W>();
+        let (outs, _) = out.as_chunks_mut::<W>();
+        for (k, ((c, $x), o)) in chunks.iter().zip(xis).zip(outs.iter_mut()).enumerate() {
+            let $p = columns(c);
+            let (v, bad): (F8, u32) = $lanes;
+            *o = v;
+            $crate::stochastic::batch::fix_lanes!(o, bad, k, |$i| $one);
+        }
+        for (n, o) in out.iter_mut().enumerate().skip(chunks.len() * W) {
+            let $i = n;
+            *o = $one;
+        }
+    }};
 }
 
-/// Whether `f` has lacunarity 2 and gain ±½, the fBm whose estimator runs on lanes.
-fn halving(f: Fractal) -> bool {
-    let (_, lac, gain) = f.sane();
-    lac == 2.0 && (gain == 0.5 || gain == -0.5)
+/// `$one` for each lane of chunk `$k` whose bit is set in `$bad`, written to `$o`.
+macro_rules! fix_lanes {
+    ($o:ident, $bad:ident, $k:ident, |$i:ident| $one:expr) => {
+        if $bad != 0 {
+            for (lane, o) in $o.iter_mut().enumerate() {
+                if $bad >> lane & 1 == 1 {
+                    let $i = $k * W + lane;
+                    *o = $one;
+                }
+            }
+        }
+    };
 }
+
+pub(crate) use chunks;
+pub(crate) use fix_lanes;
 
 #[cfg(test)]
 mod tests {
     extern crate std;
     use super::super::estimators::ONE_BELOW;
+    use super::super::fractal::batch::{fbm3_batch_on, fbm3_stochastic_batch_on};
+    use super::super::fractal::{Fractal, fbm3, fbm3_stochastic};
+    use super::super::perlin::batch::{perlin3_batch_on, perlin3_stochastic_batch_on};
+    use super::super::perlin::{perlin3, perlin3_stochastic};
     use super::*;
     use std::{format, vec, vec::Vec};
 

@@ -18,7 +18,7 @@
 //! ```
 
 use super::fractal::{self, Fractal};
-use super::{batch, gabor, perlin, simplex, sparse, voronoi};
+use super::{gabor, perlin, simplex, sparse, voronoi};
 
 mod sealed {
     pub trait Sealed {}
@@ -187,7 +187,7 @@ impl Perlin {
     #[inline]
     pub fn sample_batch(self, points: &[[f32; 3]], out: &mut [f32]) -> Result<(), BatchLengths> {
         BatchLengths::check(points.len(), None, out.len())?;
-        batch::perlin3_batch(points, self.seed, out);
+        perlin::batch::perlin3_batch(points, self.seed, out);
         Ok(())
     }
 
@@ -201,7 +201,7 @@ impl Perlin {
         out: &mut [f32],
     ) -> Result<(), BatchLengths> {
         BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
-        batch::perlin3_stochastic_batch(points, self.seed, xi, out);
+        perlin::batch::perlin3_stochastic_batch(points, self.seed, xi, out);
         Ok(())
     }
 }
@@ -294,7 +294,7 @@ impl Fbm {
     #[inline]
     pub fn sample_batch(self, points: &[[f32; 3]], out: &mut [f32]) -> Result<(), BatchLengths> {
         BatchLengths::check(points.len(), None, out.len())?;
-        batch::fbm3_batch(points, self.fractal, self.seed, out);
+        fractal::batch::fbm3_batch(points, self.fractal, self.seed, out);
         Ok(())
     }
 
@@ -307,7 +307,7 @@ impl Fbm {
         out: &mut [f32],
     ) -> Result<(), BatchLengths> {
         BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
-        batch::fbm3_stochastic_batch(points, self.fractal, self.seed, xi, out);
+        fractal::batch::fbm3_stochastic_batch(points, self.fractal, self.seed, xi, out);
         Ok(())
     }
 }

@@ -4,6 +4,7 @@
 //! corner with probability equal to its interpolation weight, and only that corner's gradient
 //! is evaluated.
 
+pub(crate) mod batch;
 use super::estimators::{Narrowing, fresh_corner2, unit_corner};
 use crate::gradients;
 use crate::hash::{CORNER_MUL, PRIME, corner};

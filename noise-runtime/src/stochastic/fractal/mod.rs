@@ -10,6 +10,7 @@
 //! `w^0 … w^(n−1)` is `(1 − w^n)/(1 − w)`, which is what we use (summed directly, so gain → 1
 //! and gain = 0 need no special case).
 
+pub(crate) mod batch;
 use super::estimators::{ONE_BELOW, sanitize_xi};
 use super::perlin::perlin3_stochastic;
 
