@@ -589,3 +589,123 @@ fn batch_forms_refuse_mismatched_lengths() {
     assert!(perlin.sample_batch(&pts, &mut out).is_ok());
     assert_eq!(out[4].to_bits(), perlin.sample(pts[4]).to_bits());
 }
+
+/// Perlin through the generic forms of [`Octaves`] (a wrapper that overrides nothing): the
+/// fractal sum and its estimators as eq. 9 and Algorithm 2 state them.
+#[derive(Clone, Copy)]
+struct Generic(Perlin);
+
+impl Noise<[f32; 3]> for Generic {
+    fn sample(&self, p: [f32; 3]) -> f32 {
+        self.0.sample(p)
+    }
+    fn estimate(&self, p: [f32; 3], xi: f32) -> f32 {
+        self.0.estimate(p, xi)
+    }
+}
+
+impl Octaves for Generic {
+    fn octave(&self, o: u32) -> Generic {
+        Generic(Perlin::new(octave_seed(self.0.seed, o)))
+    }
+}
+
+/// `Fbm` is generic over its noise, and Perlin's own fBm kernels (lanes, the halving
+/// estimator, the batch kernels) give exactly the generic forms' bits; another noise's fBm is
+/// its octaves summed.
+#[test]
+fn fbm_is_generic_over_its_noise_and_perlins_kernels_are_the_generic_forms() {
+    let mut rng = Rng(77);
+    for f in [
+        Fractal::default(),
+        Fractal::new(7, 2.0, -0.5),
+        Fractal::new(5, 1.9, 0.6),
+    ] {
+        let (fast, generic) = (Fbm::new(f, 9), Fbm::of(f, Generic(Perlin::new(9))));
+        let simplex = Fbm::of(f, Simplex::new(4));
+        let pts: Vec<[f32; 3]> = (0..3000)
+            .map(|_| [0; 3].map(|_| (rng.unit_f32() - 0.5) * 300.0))
+            .collect();
+        let xis: Vec<f32> = (0..pts.len()).map(|_| rng.unit_f32()).collect();
+        for (&p, &xi) in pts.iter().zip(&xis) {
+            assert_eq!(
+                fast.sample(p).to_bits(),
+                generic.sample(p).to_bits(),
+                "{p:?}"
+            );
+            assert_eq!(
+                fast.estimate(p, xi).to_bits(),
+                generic.estimate(p, xi).to_bits(),
+                "{p:?} {xi}"
+            );
+            for exact in [0, 1, 3] {
+                assert_eq!(
+                    fast.estimate_tail(p, exact, xi).to_bits(),
+                    generic.estimate_tail(p, exact, xi).to_bits()
+                );
+                assert_eq!(
+                    fast.estimate_octave(p, exact, xi).to_bits(),
+                    generic.estimate_octave(p, exact, xi).to_bits()
+                );
+            }
+            let sum = fractal(p, f, |q, o| Simplex::new(octave_seed(4, o)).sample(q));
+            assert_eq!(simplex.sample(p).to_bits(), sum.to_bits());
+        }
+        let (mut a, mut b) = (vec![0.0; pts.len()], vec![0.0; pts.len()]);
+        fast.estimate_batch(&pts, &xis, &mut a).unwrap();
+        generic.estimate_batch(&pts, &xis, &mut b).unwrap();
+        assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()));
+        fast.sample_batch(&pts, &mut a).unwrap();
+        generic.sample_batch(&pts, &mut b).unwrap();
+        assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+}
+
+/// Every noise type stands behind one trait object, its verbs the inherent ones; the batch
+/// verbs of the trait give the single-point values for 2D and 4D points too.
+#[test]
+fn every_noise_is_a_noise() {
+    let f = Fractal::new(4, 2.0, 0.5);
+    let noises: Vec<(&str, Box<dyn Noise<[f32; 3]>>)> = vec![
+        ("perlin", Box::new(Perlin::new(1))),
+        ("simplex", Box::new(Simplex::new(1))),
+        ("fbm", Box::new(Fbm::new(f, 1))),
+        ("fbm simplex", Box::new(Fbm::of(f, Simplex::new(1)))),
+        ("sparse", Box::new(SparseConvolution::new(10, 1))),
+        ("sparse fbm", Box::new(SparseConvolutionFbm::new(f, 10, 1))),
+        ("gabor", Box::new(GaborNoise::new(Gabor::default(), 1))),
+        ("voronoi", Box::new(SmoothVoronoi::new(1))),
+        ("worley", Box::new(Worley::new(1))),
+    ];
+    let mut rng = Rng(5);
+    let pts: Vec<[f32; 3]> = (0..200)
+        .map(|_| [0; 3].map(|_| rng.unit_f32() * 20.0 - 10.0))
+        .collect();
+    let xis: Vec<f32> = (0..pts.len()).map(|_| rng.unit_f32()).collect();
+    for (name, n) in &noises {
+        let mut out = vec![0.0; pts.len()];
+        n.estimate_batch(&pts, &xis, &mut out).unwrap();
+        for i in 0..pts.len() {
+            assert_eq!(
+                out[i].to_bits(),
+                n.estimate(pts[i], xis[i]).to_bits(),
+                "{name}"
+            );
+        }
+        assert!(n.sample_batch(&pts, &mut out[1..]).is_err(), "{name}");
+    }
+    assert_eq!(
+        noises[0].1.sample(pts[3]).to_bits(),
+        Perlin::new(1).sample(pts[3]).to_bits()
+    );
+    let p2: Vec<[f32; 2]> = pts.iter().map(|p| [p[0], p[1]]).collect();
+    let mut out = vec![0.0; p2.len()];
+    Noise::<[f32; 2]>::sample_batch(&Perlin::new(2), &p2, &mut out).unwrap();
+    assert!(
+        out.iter()
+            .zip(&p2)
+            .all(|(o, &p)| o.to_bits() == Perlin::new(2).sample(p).to_bits())
+    );
+    let (v, g) = Gradient::gradient(&Simplex::new(3), [0.3f32, 0.7, 1.1]);
+    assert_eq!((v, g), Simplex::new(3).gradient([0.3f32, 0.7, 1.1]));
+}

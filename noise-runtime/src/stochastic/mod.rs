@@ -107,15 +107,18 @@ pub(crate) const HARD_COORDINATES: [f32; 12] = [
     f32::NAN,
 ];
 
-mod noises;
+mod noise;
 
 pub use estimators::{
     ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
 };
+pub use fractal::Fbm;
 pub use fractal::{Fractal, fractal, fractal_estimate, fractal_tail_estimate, octave_seed};
 pub use gabor::Gabor;
-pub use noises::{
-    BatchLengths, Fbm, GaborNoise, LatticePoint, Perlin, Simplex, SmoothVoronoi, SparseConvolution,
-    SparseConvolutionFbm, Worley,
-};
+pub use gabor::GaborNoise;
+pub use noise::{BatchLengths, Gradient, LatticePoint, Noise, Octaves};
+pub use perlin::Perlin;
+pub use simplex::Simplex;
+pub use sparse::{SparseConvolution, SparseConvolutionFbm};
 pub use voronoi::SMOOTH_VORONOI_Q;
+pub use voronoi::{SmoothVoronoi, Worley};

@@ -344,6 +344,123 @@ fn fbm3_stochastic_halving(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> Optio
     Some(k.scale(v))
 }
 
+// The type and its verbs.
+use super::Perlin;
+use super::noise::{BatchLengths, Noise, Octaves};
+
+/// A fractal sum (fBm) of a noise: `Σ_o gain^o · octave(o)(p · lacunarity^o)` with an
+/// independent seed per octave (eq. 9); its estimators choose octaves by their weight
+/// (Algorithm 2). Of 3D Perlin noise by default ([`Fbm::new`], which runs Perlin's own lane and
+/// batch kernels), of any [`Octaves`] noise through [`Fbm::of`].
+///
+/// ```
+/// use noise_runtime::stochastic::{Fbm, Fractal, Simplex};
+///
+/// let perlin = Fbm::new(Fractal::default(), 7);
+/// let simplex = Fbm::of(Fractal::new(6, 2.0, 0.5), Simplex::new(7));
+/// let p = [0.7, 3.1, -5.2];
+/// let mean = (0..256).map(|i| simplex.estimate(p, (i as f32 + 0.5) / 256.0)).sum::<f32>() / 256.0;
+/// assert!((mean - simplex.sample(p)).abs() < 0.1 && perlin.sample(p).is_finite());
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Fbm<N = Perlin> {
+    /// Octaves, lacunarity and gain.
+    pub fractal: Fractal,
+    /// The noise of octave 0; octave `o` is it with seed [`octave_seed`]`(seed, o)`.
+    pub noise: N,
+}
+
+impl Fbm<Perlin> {
+    /// fBm of 3D Perlin noise with these octaves and this seed.
+    pub const fn new(fractal: Fractal, seed: u32) -> Fbm {
+        Fbm {
+            fractal,
+            noise: Perlin::new(seed),
+        }
+    }
+}
+
+impl<N: Octaves> Fbm<N> {
+    /// The fractal sum of `noise` with these octaves.
+    pub const fn of(fractal: Fractal, noise: N) -> Fbm<N> {
+        Fbm { fractal, noise }
+    }
+
+    /// The sum of every octave at `p`.
+    #[must_use]
+    #[inline(always)]
+    pub fn sample(&self, p: [f32; 3]) -> f32 {
+        self.noise.fbm_sample(self.fractal, p)
+    }
+
+    /// One octave chosen by ξ and, in it, the noise's own estimator: unbiased, at the cost of
+    /// one estimate whatever the octave count.
+    #[must_use]
+    #[inline(always)]
+    pub fn estimate(&self, p: [f32; 3], xi: f32) -> f32 {
+        self.noise.fbm_estimate(self.fractal, p, xi)
+    }
+
+    /// The first `exact` octaves summed exactly and one estimate of one octave of the rest:
+    /// the tail's variance shrinks by `gain^(2·exact)` ([`fractal_tail_estimate`]).
+    #[must_use]
+    #[inline]
+    pub fn estimate_tail(&self, p: [f32; 3], exact: u32, xi: f32) -> f32 {
+        self.noise.fbm_estimate_tail(self.fractal, p, exact, xi)
+    }
+
+    /// The first `exact` octaves summed exactly and one octave of the rest chosen by ξ and
+    /// evaluated exactly: only the octave choice is random.
+    #[must_use]
+    #[inline]
+    pub fn estimate_octave(&self, p: [f32; 3], exact: u32, xi: f32) -> f32 {
+        self.noise.fbm_estimate_octave(self.fractal, p, exact, xi)
+    }
+
+    /// [`sample`](Self::sample) of many points into `out` (eight per AVX2 instruction for
+    /// Perlin fBm); slices of different lengths are an error, and nothing is written.
+    #[inline]
+    pub fn sample_batch(&self, points: &[[f32; 3]], out: &mut [f32]) -> Result<(), BatchLengths> {
+        self.noise.fbm_sample_batch(self.fractal, points, out)
+    }
+
+    /// [`estimate`](Self::estimate) of many points, one ξ each, as
+    /// [`sample_batch`](Self::sample_batch).
+    #[inline]
+    pub fn estimate_batch(
+        &self,
+        points: &[[f32; 3]],
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        self.noise.fbm_estimate_batch(self.fractal, points, xi, out)
+    }
+}
+
+impl<N: Octaves> Noise<[f32; 3]> for Fbm<N> {
+    #[inline(always)]
+    fn sample(&self, p: [f32; 3]) -> f32 {
+        Fbm::sample(self, p)
+    }
+    #[inline(always)]
+    fn estimate(&self, p: [f32; 3], xi: f32) -> f32 {
+        Fbm::estimate(self, p, xi)
+    }
+    #[inline]
+    fn sample_batch(&self, points: &[[f32; 3]], out: &mut [f32]) -> Result<(), BatchLengths> {
+        Fbm::sample_batch(self, points, out)
+    }
+    #[inline]
+    fn estimate_batch(
+        &self,
+        points: &[[f32; 3]],
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        Fbm::estimate_batch(self, points, xi, out)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::perlin::perlin3;

@@ -258,6 +258,164 @@ pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     lanes::perlin4_stochastic(p, seed, xi)
 }
 
+// The type and its verbs.
+use super::fractal::{
+    Fractal, fbm3, fbm3_octave_stochastic, fbm3_stochastic, fbm3_tail_stochastic, octave_seed,
+};
+use super::noise::{BatchLengths, Gradient, LatticePoint, Noise, Octaves};
+use super::perlin;
+/// Improved Perlin noise (Perlin 2002) in 2D, 3D or 4D, about `[-1, 1]`; its estimator evaluates
+/// one lattice gradient of the `2^d` (Fajardo & Pharr, Algorithm 1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Perlin {
+    /// Seed of the lattice hash.
+    pub seed: u32,
+}
+
+impl Perlin {
+    /// Perlin noise with this seed.
+    pub const fn new(seed: u32) -> Perlin {
+        Perlin { seed }
+    }
+
+    /// The noise at `p`.
+    #[must_use]
+    #[inline(always)]
+    pub fn sample<P: LatticePoint>(self, p: P) -> f32 {
+        p.perlin(self.seed)
+    }
+
+    /// An unbiased one-sample estimate of [`sample`](Self::sample) from one uniform `xi`.
+    #[must_use]
+    #[inline(always)]
+    pub fn estimate<P: LatticePoint>(self, p: P, xi: f32) -> f32 {
+        p.perlin_estimate(self.seed, xi)
+    }
+
+    /// The noise and its analytic gradient at `p`.
+    #[must_use]
+    #[inline]
+    pub fn gradient<P: LatticePoint>(self, p: P) -> (f32, P) {
+        p.perlin_gradient(self.seed)
+    }
+
+    /// The 3D noise and its gradient at offset `f ∈ [0, 1)³` in the integer lattice cell
+    /// `cell`: exact for any `i32` cell, however far from the origin an `f32` point could not
+    /// reach (the curl-noise fields use it).
+    #[must_use]
+    #[inline]
+    pub fn gradient_in_cell(self, cell: [i32; 3], f: [f32; 3]) -> (f32, [f32; 3]) {
+        perlin::perlin3_grad_cell(cell, f, self.seed)
+    }
+
+    /// [`sample`](Self::sample) of many 3D points into `out` (eight per AVX2 instruction where
+    /// the CPU has it), bit for bit the single-point values. Slices of different lengths are
+    /// an error, and nothing is written.
+    #[inline]
+    pub fn sample_batch(self, points: &[[f32; 3]], out: &mut [f32]) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), None, out.len())?;
+        perlin::batch::perlin3_batch(points, self.seed, out);
+        Ok(())
+    }
+
+    /// [`estimate`](Self::estimate) of many 3D points, one ξ each, into `out`. Slices of
+    /// different lengths are an error, and nothing is written.
+    #[inline]
+    pub fn estimate_batch(
+        self,
+        points: &[[f32; 3]],
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
+        perlin::batch::perlin3_stochastic_batch(points, self.seed, xi, out);
+        Ok(())
+    }
+}
+
+impl<P: LatticePoint> Noise<P> for Perlin {
+    #[inline(always)]
+    fn sample(&self, p: P) -> f32 {
+        p.perlin(self.seed)
+    }
+    #[inline(always)]
+    fn estimate(&self, p: P, xi: f32) -> f32 {
+        p.perlin_estimate(self.seed, xi)
+    }
+    #[inline]
+    fn sample_batch(&self, points: &[P], out: &mut [f32]) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), None, out.len())?;
+        P::perlin_batch(points, self.seed, out);
+        Ok(())
+    }
+    #[inline]
+    fn estimate_batch(
+        &self,
+        points: &[P],
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
+        P::perlin_estimate_batch(points, self.seed, xi, out);
+        Ok(())
+    }
+}
+
+impl<P: LatticePoint> Gradient<P> for Perlin {
+    #[inline]
+    fn gradient(&self, p: P) -> (f32, P) {
+        p.perlin_gradient(self.seed)
+    }
+}
+
+/// Perlin fBm runs its own kernels: the octave loop on lanes, the halving estimator's split
+/// taken off the chain from ξ, the batch kernels; the same values as the generic forms.
+impl Octaves for Perlin {
+    #[inline]
+    fn octave(&self, o: u32) -> Perlin {
+        Perlin::new(octave_seed(self.seed, o))
+    }
+    #[inline(always)]
+    fn fbm_sample(&self, f: Fractal, p: [f32; 3]) -> f32 {
+        fbm3(p, f, self.seed)
+    }
+    #[inline(always)]
+    fn fbm_estimate(&self, f: Fractal, p: [f32; 3], xi: f32) -> f32 {
+        fbm3_stochastic(p, f, self.seed, xi)
+    }
+    #[inline]
+    fn fbm_estimate_tail(&self, f: Fractal, p: [f32; 3], exact: u32, xi: f32) -> f32 {
+        fbm3_tail_stochastic(p, f, exact, self.seed, xi)
+    }
+    #[inline]
+    fn fbm_estimate_octave(&self, f: Fractal, p: [f32; 3], exact: u32, xi: f32) -> f32 {
+        fbm3_octave_stochastic(p, f, exact, self.seed, xi)
+    }
+    #[inline]
+    fn fbm_sample_batch(
+        &self,
+        f: Fractal,
+        points: &[[f32; 3]],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), None, out.len())?;
+        super::fractal::batch::fbm3_batch(points, f, self.seed, out);
+        Ok(())
+    }
+    #[inline]
+    fn fbm_estimate_batch(
+        &self,
+        f: Fractal,
+        points: &[[f32; 3]],
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
+        super::fractal::batch::fbm3_stochastic_batch(points, f, self.seed, xi, out);
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

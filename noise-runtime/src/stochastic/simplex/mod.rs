@@ -247,6 +247,70 @@ fn simplex4_stochastic_scalar(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     Corners::<4, 5>::new(p, SKEW4).stochastic(SCALE4, xi, |c| grad4(c, seed))
 }
 
+// The type and its verbs.
+use super::fractal::octave_seed;
+use super::noise::{Gradient, LatticePoint, Noise, Octaves};
+/// Simplex noise (Perlin 2001; Gustavson's formulation) in 2D, 3D or 4D; its estimator picks
+/// one simplex corner by its kernel weight.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Simplex {
+    /// Seed of the lattice hash.
+    pub seed: u32,
+}
+
+impl Simplex {
+    /// Simplex noise with this seed.
+    pub const fn new(seed: u32) -> Simplex {
+        Simplex { seed }
+    }
+
+    /// The noise at `p`.
+    #[must_use]
+    #[inline(always)]
+    pub fn sample<P: LatticePoint>(self, p: P) -> f32 {
+        p.simplex(self.seed)
+    }
+
+    /// An unbiased one-sample estimate of [`sample`](Self::sample).
+    #[must_use]
+    #[inline(always)]
+    pub fn estimate<P: LatticePoint>(self, p: P, xi: f32) -> f32 {
+        p.simplex_estimate(self.seed, xi)
+    }
+
+    /// The noise and its analytic gradient at `p`.
+    #[must_use]
+    #[inline]
+    pub fn gradient<P: LatticePoint>(self, p: P) -> (f32, P) {
+        p.simplex_gradient(self.seed)
+    }
+}
+
+impl<P: LatticePoint> Noise<P> for Simplex {
+    #[inline(always)]
+    fn sample(&self, p: P) -> f32 {
+        p.simplex(self.seed)
+    }
+    #[inline(always)]
+    fn estimate(&self, p: P, xi: f32) -> f32 {
+        p.simplex_estimate(self.seed, xi)
+    }
+}
+
+impl<P: LatticePoint> Gradient<P> for Simplex {
+    #[inline]
+    fn gradient(&self, p: P) -> (f32, P) {
+        p.simplex_gradient(self.seed)
+    }
+}
+
+impl Octaves for Simplex {
+    #[inline]
+    fn octave(&self, o: u32) -> Simplex {
+        Simplex::new(octave_seed(self.seed, o))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -339,6 +339,144 @@ pub fn fbm_sparse_conv3_stochastic1(p: [f32; 3], f: Fractal, n: u32, seed: u32, 
     })
 }
 
+// The type and its verbs.
+use super::noise::{Noise, Octaves};
+use super::sparse;
+/// Sparse convolution noise (Lewis 1989): `impulses` random impulses per cell convolved with a
+/// quintic kernel (eq. 7). The estimator evaluates one impulse per cell (eq. 8); the one-term
+/// estimator samples the 27-cell sum too.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SparseConvolution {
+    /// Impulses per cell, clamped to `1..=64` (the paper uses 10).
+    pub impulses: u32,
+    /// Seed of the impulse hash.
+    pub seed: u32,
+}
+
+impl SparseConvolution {
+    /// Sparse convolution noise with `impulses` per cell.
+    pub const fn new(impulses: u32, seed: u32) -> SparseConvolution {
+        SparseConvolution { impulses, seed }
+    }
+
+    /// The noise at `p`.
+    #[must_use]
+    #[inline]
+    pub fn sample(self, p: [f32; 3]) -> f32 {
+        sparse::sparse_conv3(p, self.impulses, self.seed)
+    }
+
+    /// One impulse per cell (eq. 8), unbiased.
+    #[must_use]
+    #[inline]
+    pub fn estimate(self, p: [f32; 3], xi: f32) -> f32 {
+        sparse::sparse_conv3_stochastic(p, self.impulses, self.seed, xi)
+    }
+
+    /// One impulse of one cell: one kernel evaluation, much more variance.
+    #[must_use]
+    #[inline]
+    pub fn estimate_one_term(self, p: [f32; 3], xi: f32) -> f32 {
+        sparse::sparse_conv3_stochastic1(p, self.impulses, self.seed, xi)
+    }
+}
+
+/// The fractal sum of [`SparseConvolution`] octaves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SparseConvolutionFbm {
+    /// Octaves, lacunarity and gain.
+    pub fractal: Fractal,
+    /// Impulses per cell.
+    pub impulses: u32,
+    /// Seed of octave 0.
+    pub seed: u32,
+}
+
+impl SparseConvolutionFbm {
+    /// The fractal sum with these octaves, `impulses` per cell, and this seed.
+    pub const fn new(fractal: Fractal, impulses: u32, seed: u32) -> SparseConvolutionFbm {
+        SparseConvolutionFbm {
+            fractal,
+            impulses,
+            seed,
+        }
+    }
+
+    /// The sum of every octave at `p`.
+    #[must_use]
+    #[inline]
+    pub fn sample(self, p: [f32; 3]) -> f32 {
+        sparse::fbm_sparse_conv3(p, self.fractal, self.impulses, self.seed)
+    }
+
+    /// One octave (Algorithm 2) and in it one impulse per cell.
+    #[must_use]
+    #[inline]
+    pub fn estimate(self, p: [f32; 3], xi: f32) -> f32 {
+        sparse::fbm_sparse_conv3_stochastic(p, self.fractal, self.impulses, self.seed, xi)
+    }
+
+    /// One octave and in it one impulse of one cell.
+    #[must_use]
+    #[inline]
+    pub fn estimate_one_term(self, p: [f32; 3], xi: f32) -> f32 {
+        sparse::fbm_sparse_conv3_stochastic1(p, self.fractal, self.impulses, self.seed, xi)
+    }
+
+    /// The first `exact` octaves exact, one octave of the rest sampled, one impulse per cell.
+    #[must_use]
+    #[inline]
+    pub fn estimate_tail(self, p: [f32; 3], exact: u32, xi: f32) -> f32 {
+        sparse::fbm_sparse_conv3_tail_stochastic(
+            p,
+            self.fractal,
+            exact,
+            self.impulses,
+            self.seed,
+            xi,
+        )
+    }
+
+    /// The first `exact` octaves exact, one octave of the rest chosen by ξ and evaluated
+    /// exactly (as [`Fbm::estimate_octave`]).
+    #[must_use]
+    #[inline]
+    pub fn estimate_octave(self, p: [f32; 3], exact: u32, xi: f32) -> f32 {
+        let octave =
+            |q: [f32; 3], o: u32| sparse::sparse_conv3(q, self.impulses, octave_seed(self.seed, o));
+        fractal_tail_estimate(p, self.fractal, exact, xi, octave, |q, o, _| octave(q, o))
+    }
+}
+
+impl Noise<[f32; 3]> for SparseConvolution {
+    #[inline]
+    fn sample(&self, p: [f32; 3]) -> f32 {
+        SparseConvolution::sample(*self, p)
+    }
+    #[inline]
+    fn estimate(&self, p: [f32; 3], xi: f32) -> f32 {
+        SparseConvolution::estimate(*self, p, xi)
+    }
+}
+
+impl Octaves for SparseConvolution {
+    #[inline]
+    fn octave(&self, o: u32) -> SparseConvolution {
+        SparseConvolution::new(self.impulses, octave_seed(self.seed, o))
+    }
+}
+
+impl Noise<[f32; 3]> for SparseConvolutionFbm {
+    #[inline]
+    fn sample(&self, p: [f32; 3]) -> f32 {
+        SparseConvolutionFbm::sample(*self, p)
+    }
+    #[inline]
+    fn estimate(&self, p: [f32; 3], xi: f32) -> f32 {
+        SparseConvolutionFbm::estimate(*self, p, xi)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

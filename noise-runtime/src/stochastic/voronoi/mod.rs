@@ -288,6 +288,108 @@ fn picked_distance_lanes(cell: I4, f: F4, seed: u32, bits: u32) -> f32 {
     (d * d).sum3_x().sqrt().x()
 }
 
+// The type and its verbs.
+use super::fractal::octave_seed;
+use super::noise::{Noise, Octaves};
+use super::voronoi;
+/// Smooth Voronoi noise (eq. 12): a soft minimum of the distances to the feature points of the
+/// 27 cells around `p`; its estimator evaluates the nearest cells exactly and the rest by
+/// Russian roulette (Algorithm 3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct SmoothVoronoi {
+    /// Seed of the feature points.
+    pub seed: u32,
+}
+
+impl SmoothVoronoi {
+    /// Smooth Voronoi noise with this seed.
+    pub const fn new(seed: u32) -> SmoothVoronoi {
+        SmoothVoronoi { seed }
+    }
+
+    /// The noise at `p`.
+    #[must_use]
+    #[inline]
+    pub fn sample(self, p: [f32; 3]) -> f32 {
+        voronoi::smooth_voronoi3(p, self.seed)
+    }
+
+    /// An unbiased estimate with the paper's roulette probability
+    /// ([`SMOOTH_VORONOI_Q`](super::SMOOTH_VORONOI_Q)).
+    #[must_use]
+    #[inline]
+    pub fn estimate(self, p: [f32; 3], xi: f32) -> f32 {
+        voronoi::smooth_voronoi3_stochastic(p, self.seed, super::SMOOTH_VORONOI_Q, xi)
+    }
+
+    /// An unbiased estimate with roulette probability `q` (higher: more exact work, less
+    /// variance).
+    #[must_use]
+    #[inline]
+    pub fn estimate_with(self, p: [f32; 3], q: f32, xi: f32) -> f32 {
+        voronoi::smooth_voronoi3_stochastic(p, self.seed, q, xi)
+    }
+}
+
+/// Worley (cellular) noise: one feature point per unit cell.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Worley {
+    /// Seed of the feature points.
+    pub seed: u32,
+}
+
+impl Worley {
+    /// Worley noise with this seed.
+    pub const fn new(seed: u32) -> Worley {
+        Worley { seed }
+    }
+
+    /// F1: the distance from `p` to the nearest feature point.
+    #[must_use]
+    #[inline]
+    pub fn f1(self, p: [f32; 3]) -> f32 {
+        voronoi::worley3_f1(p, self.seed)
+    }
+
+    /// The feature point of a cell.
+    #[must_use]
+    #[inline]
+    pub fn feature_point(self, cell: [i32; 3]) -> [f32; 3] {
+        voronoi::feature_point3(cell, self.seed)
+    }
+}
+
+impl Noise<[f32; 3]> for SmoothVoronoi {
+    #[inline]
+    fn sample(&self, p: [f32; 3]) -> f32 {
+        SmoothVoronoi::sample(*self, p)
+    }
+    #[inline]
+    fn estimate(&self, p: [f32; 3], xi: f32) -> f32 {
+        SmoothVoronoi::estimate(*self, p, xi)
+    }
+}
+
+impl Octaves for SmoothVoronoi {
+    #[inline]
+    fn octave(&self, o: u32) -> SmoothVoronoi {
+        SmoothVoronoi::new(octave_seed(self.seed, o))
+    }
+}
+
+/// Worley F1 has no stochastic form: its exact value is its own unbiased estimate (no
+/// variance, no saving), which lets it stand beside the other noises through [`Noise`].
+impl Noise<[f32; 3]> for Worley {
+    #[inline]
+    fn sample(&self, p: [f32; 3]) -> f32 {
+        self.f1(p)
+    }
+    #[inline]
+    fn estimate(&self, p: [f32; 3], _xi: f32) -> f32 {
+        self.f1(p)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
