@@ -88,89 +88,89 @@ pub const KS: [usize; 4] = [1, 4, 16, 64];
 type Det = Box<dyn Fn([f32; 3]) -> f32>;
 type Sto = Box<dyn Fn([f32; 3], f32) -> f32>;
 
-/// The functions of the report with the paper's settings.
-fn functions() -> Vec<(&'static str, Det, Option<Sto>)> {
-    let fbm = Fractal::new(10, 2.0, 0.5);
-    // Prepared once, as a renderer keeps it.
-    let gabor = std::rc::Rc::new(GaborNoise::new(Gabor::default(), 1));
-    vec![
-        (
-            "perlin2",
-            Box::new(|p: [f32; 3]| Perlin::new(1).sample([p[0], p[1]])),
-            Some(Box::new(|p: [f32; 3], x| {
-                Perlin::new(1).estimate([p[0], p[1]], x)
-            })),
-        ),
-        (
-            "perlin3",
-            Box::new(|p| Perlin::new(1).sample(p)),
-            Some(Box::new(|p, x| Perlin::new(1).estimate(p, x))),
-        ),
-        (
-            "perlin4",
-            Box::new(|p: [f32; 3]| Perlin::new(1).sample([p[0], p[1], p[2], p[0] + p[2]])),
-            Some(Box::new(|p: [f32; 3], x| {
-                Perlin::new(1).estimate([p[0], p[1], p[2], p[0] + p[2]], x)
-            })),
-        ),
-        (
-            "simplex2",
-            Box::new(|p: [f32; 3]| Simplex::new(1).sample([p[0], p[1]])),
-            Some(Box::new(|p: [f32; 3], x| {
-                Simplex::new(1).estimate([p[0], p[1]], x)
-            })),
-        ),
-        (
-            "simplex3",
-            Box::new(|p| Simplex::new(1).sample(p)),
-            Some(Box::new(|p, x| Simplex::new(1).estimate(p, x))),
-        ),
-        (
-            "simplex4",
-            Box::new(|p: [f32; 3]| Simplex::new(1).sample([p[0], p[1], p[2], p[0] + p[2]])),
-            Some(Box::new(|p: [f32; 3], x| {
-                Simplex::new(1).estimate([p[0], p[1], p[2], p[0] + p[2]], x)
-            })),
-        ),
-        (
-            "fbm3",
-            Box::new(move |p| Fbm::new(fbm, 1).sample(p)),
-            Some(Box::new(move |p, x| Fbm::new(fbm, 1).estimate(p, x))),
-        ),
-        (
-            "sparse_conv3",
-            Box::new(|p| SparseConvolution::new(10, 1).sample(p)),
-            Some(Box::new(|p, x| {
-                SparseConvolution::new(10, 1).estimate(p, x)
-            })),
-        ),
-        (
+/// A 2D noise seeing the report's 3D points through their `(x, y)`.
+struct Xy<N>(N);
+
+impl<N: Noise<[f32; 2]>> Noise<[f32; 3]> for Xy<N> {
+    #[inline(always)]
+    fn sample(&self, p: [f32; 3]) -> f32 {
+        self.0.sample([p[0], p[1]])
+    }
+    #[inline(always)]
+    fn estimate(&self, p: [f32; 3], xi: f32) -> f32 {
+        self.0.estimate([p[0], p[1]], xi)
+    }
+}
+
+/// A 4D noise seeing the report's 3D points as `(x, y, z, x + z)`.
+struct Xyzw<N>(N);
+
+impl<N: Noise<[f32; 4]>> Noise<[f32; 3]> for Xyzw<N> {
+    #[inline(always)]
+    fn sample(&self, p: [f32; 3]) -> f32 {
+        self.0.sample([p[0], p[1], p[2], p[0] + p[2]])
+    }
+    #[inline(always)]
+    fn estimate(&self, p: [f32; 3], xi: f32) -> f32 {
+        self.0.estimate([p[0], p[1], p[2], p[0] + p[2]], xi)
+    }
+}
+
+/// One row's functions from a noise through the [`Noise`] trait: its `sample`, and its
+/// `estimate` when it has a stochastic form (`stochastic`). Each closure is monomorphised
+/// over the noise, so a timed call is one indirect call into inlined code.
+fn row<N: Noise<[f32; 3]> + 'static>(
+    name: &'static str,
+    noise: N,
+    stochastic: bool,
+) -> (&'static str, Det, Option<Sto>) {
+    let noise = std::rc::Rc::new(noise);
+    let det: Det = Box::new({
+        let n = noise.clone();
+        move |p| n.sample(p)
+    });
+    let sto: Option<Sto> =
+        stochastic.then(|| -> Sto { Box::new(move |p, x| noise.estimate(p, x)) });
+    (name, det, sto)
+}
+
+/// The report's noises with the paper's settings, written once: `$m!(name, noise, stochastic)`
+/// for each, `stochastic` when the noise has an estimator to measure.
+macro_rules! for_each_noise {
+    ($m:ident) => {{
+        let fbm = Fractal::new(10, 2.0, 0.5);
+        $m!("perlin2", Xy(Perlin::new(1)), true);
+        $m!("perlin3", Perlin::new(1), true);
+        $m!("perlin4", Xyzw(Perlin::new(1)), true);
+        $m!("simplex2", Xy(Simplex::new(1)), true);
+        $m!("simplex3", Simplex::new(1), true);
+        $m!("simplex4", Xyzw(Simplex::new(1)), true);
+        $m!("fbm3", Fbm::new(fbm, 1), true);
+        $m!("sparse_conv3", SparseConvolution::new(10, 1), true);
+        $m!(
             "fbm_sparse_conv3",
-            Box::new(move |p| SparseConvolutionFbm::new(fbm, 10, 1).sample(p)),
-            Some(Box::new(move |p, x| {
-                SparseConvolutionFbm::new(fbm, 10, 1).estimate(p, x)
-            })),
-        ),
-        (
-            "gabor3",
-            Box::new({
-                let g = gabor.clone();
-                move |p| g.sample(p)
-            }),
-            Some(Box::new({
-                let g = gabor.clone();
-                move |p, x| g.estimate(p, x)
-            })),
-        ),
-        (
-            "voronoi3",
-            Box::new(|p| SmoothVoronoi::new(1).sample(p)),
-            Some(Box::new(|p, x| {
-                SmoothVoronoi::new(1).estimate_with(p, SMOOTH_VORONOI_Q, x)
-            })),
-        ),
-        ("worley3", Box::new(|p| Worley::new(1).f1(p)), None),
-    ]
+            SparseConvolutionFbm::new(fbm, 10, 1),
+            true
+        );
+        // Prepared once, as a renderer keeps it.
+        $m!("gabor3", GaborNoise::new(Gabor::default(), 1), true);
+        // With the paper's roulette probability, `SMOOTH_VORONOI_Q`.
+        $m!("voronoi3", SmoothVoronoi::new(1), true);
+        // Worley F1 has no stochastic form.
+        $m!("worley3", Worley::new(1), false);
+    }};
+}
+
+/// The noises of the report, each through the [`Noise`] trait.
+fn functions() -> Vec<(&'static str, Det, Option<Sto>)> {
+    let mut out = Vec::new();
+    macro_rules! push {
+        ($name:literal, $noise:expr, $stochastic:expr) => {
+            out.push(row($name, $noise, $stochastic))
+        };
+    }
+    for_each_noise!(push);
+    out
 }
 
 fn random_points(n: usize, seed: u64) -> Vec<[f32; 3]> {
@@ -481,42 +481,25 @@ pub fn run_with(timed: usize) -> Vec<Row> {
         let mut r = SplitMix64::new(4);
         (0..SIDE * SIDE * 64).map(|_| r.unit_f64() as f32).collect()
     };
-    // Timing, monomorphised per function (boxing would hide inlining and skew the ratios).
-    let fbm = Fractal::new(10, 2.0, 0.5);
-    // Gabor noise prepared once, as a renderer keeps it (`gabor3` builds its tables per call).
-    let g = GaborNoise::new(Gabor::default(), 1);
-    macro_rules! times {
-        ($($name:literal: |$p:ident, $x:ident| $det:expr, $sto:expr;)*) => {{
-            let mut t = BTreeMap::new();
-            $(
-                t.insert($name, time_pair(
+    // Timing, monomorphised per noise (boxing would hide inlining and skew the ratios): each
+    // noise's `sample` against its `estimate`, through the `Noise` trait.
+    let mut times = BTreeMap::new();
+    macro_rules! time {
+        ($name:literal, $noise:expr, $stochastic:expr) => {{
+            let noise = $noise;
+            times.insert(
+                $name,
+                time_pair(
                     &pts,
                     &xis,
-                    |$p, $x| { let _ = $x; $det },
-                    |$p, $x| { let _ = $x; $sto },
-                ));
-            )*
-            t
+                    |p, _| noise.sample(p),
+                    |p, x| noise.estimate(p, x),
+                ),
+            );
         }};
     }
-    let times = times! {
-        "perlin2": |p, x| Perlin::new(1).sample([p[0], p[1]]), Perlin::new(1).estimate([p[0], p[1]], x);
-        "perlin3": |p, x| Perlin::new(1).sample(p), Perlin::new(1).estimate(p, x);
-        "perlin4": |p, x| Perlin::new(1).sample([p[0], p[1], p[2], p[0] + p[2]]),
-            Perlin::new(1).estimate([p[0], p[1], p[2], p[0] + p[2]], x);
-        "simplex2": |p, x| Simplex::new(1).sample([p[0], p[1]]), Simplex::new(1).estimate([p[0], p[1]], x);
-        "simplex3": |p, x| Simplex::new(1).sample(p), Simplex::new(1).estimate(p, x);
-        "simplex4": |p, x| Simplex::new(1).sample([p[0], p[1], p[2], p[0] + p[2]]),
-            Simplex::new(1).estimate([p[0], p[1], p[2], p[0] + p[2]], x);
-        "fbm3": |p, x| Fbm::new(fbm, 1).sample(p), Fbm::new(fbm, 1).estimate(p, x);
-        "sparse_conv3": |p, x| SparseConvolution::new(10, 1).sample(p), SparseConvolution::new(10, 1).estimate(p, x);
-        "fbm_sparse_conv3": |p, x| SparseConvolutionFbm::new(fbm, 10, 1).sample(p),
-            SparseConvolutionFbm::new(fbm, 10, 1).estimate(p, x);
-        "gabor3": |p, x| g.sample(p), g.estimate(p, x);
-        "voronoi3": |p, x| SmoothVoronoi::new(1).sample(p),
-            SmoothVoronoi::new(1).estimate_with(p, SMOOTH_VORONOI_Q, x);
-        "worley3": |p, x| Worley::new(1).f1(p), Worley::new(1).f1(p);
-    };
+    for_each_noise!(time);
+    let fbm = Fractal::new(10, 2.0, 0.5);
     let mut rows = Vec::new();
     for (name, det, sto) in functions() {
         let t = times[name];
