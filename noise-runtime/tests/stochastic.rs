@@ -666,7 +666,8 @@ fn fbm_is_generic_over_its_noise_and_perlins_kernels_are_the_generic_forms() {
 #[test]
 fn every_noise_is_a_noise() {
     let f = Fractal::new(4, 2.0, 0.5);
-    let noises: Vec<(&str, Box<dyn Noise<[f32; 3]>>)> = vec![
+    type Named = (&'static str, Box<dyn Noise<[f32; 3]>>);
+    let noises: Vec<Named> = vec![
         ("perlin", Box::new(Perlin::new(1))),
         ("simplex", Box::new(Simplex::new(1))),
         ("fbm", Box::new(Fbm::new(f, 1))),

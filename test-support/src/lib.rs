@@ -4,7 +4,7 @@
 //! - [`Rng`]: the one test RNG (SplitMix64, Steele, Lea & Flood 2014) for reproducible inputs;
 //!   the same stream as the generator's `build_assets::generate::rng::SplitMix64`, without
 //!   depending on it, so the runtime's tests compile no generator.
-//! - [`bake`] (feature `bake`): a spec from TOML key-value lines, its texture, its error
+//! - `bake` (feature `bake`): a spec from TOML key-value lines, its texture, its error
 //!   message, and the repository's vendored reference data.
 
 /// SplitMix64: a 64-bit state advanced by the golden-ratio increment and finalised by a mixer.

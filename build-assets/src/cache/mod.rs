@@ -2,7 +2,7 @@
 //! lives for every way in (build script, `noise_texture!`, CLI).
 //!
 //! **Key**: FNV-1a 128 of the canonical spec (every default filled in,
-//! [`TextureSpec::canonical`]) and [`ALGORITHM_VERSION`]; any change of either regenerates,
+//! [`TextureSpec::canonical`]) and [`ALGORITHM_VERSION`](crate::ALGORITHM_VERSION); any change of either regenerates,
 //! nothing else does.
 //!
 //! **Entry** `<key>.nbk`: a 64-byte header (magic and format version, data length, data hash,

@@ -213,9 +213,9 @@ pub trait Gradient<P: Copy>: Noise<P> {
 }
 
 /// A 3D noise a fractal sum can be built from: `Σ_o gain^o · octave(o)(p · lacunarity^o)`
-/// (eq. 9), each octave the same noise with its own seed ([`octave_seed`]). The sums and their
+/// (eq. 9), each octave the same noise with its own seed ([`octave_seed`](super::octave_seed)). The sums and their
 /// estimators have generic forms here (Algorithm 2 and the tail and octave estimators of
-/// [`fractal`](super::fractal), [`fractal_tail_estimate`](super::fractal_tail_estimate)); a
+/// [`fractal`](fn@super::fractal), [`fractal_tail_estimate`](super::fractal_tail_estimate)); a
 /// noise with faster kernels for them (3D Perlin: lanes, batch kernels) overrides them with
 /// the same values.
 pub trait Octaves: Noise<[f32; 3]> + Sized {

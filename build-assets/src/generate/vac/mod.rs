@@ -26,7 +26,7 @@ pub struct VacConfig {
     pub initial_density: f64,
     /// Seed of the initial pattern and of the tie-breaking permutation.
     pub seed: u64,
-    /// Gaussian truncation ([`kernel::DEFAULT_CUTOFF`]); 0 disables it (small masks only).
+    /// Gaussian truncation ([`DEFAULT_CUTOFF`]); 0 disables it (small masks only).
     pub cutoff: f64,
 }
 

@@ -7,7 +7,7 @@ use super::super::perlin::batch::{perlin3_lanes, perlin3_stochastic_lanes};
 use super::{Fractal, octave_seed};
 use crate::lanes::{F8, Lanes8};
 
-/// [`fbm3_batch`](super::fbm3_batch) on eight lanes: `fbm3`'s octaves in its order, each
+/// [`fbm3_batch`] on eight lanes: `fbm3`'s octaves in its order, each
 /// octave's points on lanes (a lane outside the split range at some octave takes the
 /// single-point Perlin noise for that octave).
 #[inline(always)]
@@ -47,7 +47,7 @@ pub(crate) fn fbm3<L: Lanes8>(cpu: L, points: &[[f32; 3]], f: Fractal, seed: u32
     );
 }
 
-/// [`fbm3_stochastic_batch`](super::fbm3_stochastic_batch) on eight lanes, for lacunarity 2
+/// [`fbm3_stochastic_batch`] on eight lanes, for lacunarity 2
 /// and gain ±½ (the caller checks). Each lane's octave is the one `fractal::OctavePick`
 /// picks, here read off the exponent of `2 − target` (exact, by Sterbenz's lemma): a target
 /// in `[2 − 2^−k, 2 − 2^−(k+1))` lies in octave `k + 1`, and then `2 − target` lies in
@@ -107,13 +107,13 @@ pub(crate) fn fbm3_stochastic<L: Lanes8>(
     );
 }
 
-/// [`fbm3`] at every point: `out[i] = fbm3(points[i], f, seed)` for the first
+/// [`fbm3`](super::fbm3) at every point: `out[i] = fbm3(points[i], f, seed)` for the first
 /// `min(points.len(), out.len())` points, whose count it returns.
 pub fn fbm3_batch(points: &[[f32; 3]], f: Fractal, seed: u32, out: &mut [f32]) -> usize {
     fbm3_batch_on(Path::best(), points, f, seed, out)
 }
 
-/// [`fbm3_stochastic`] at every point with its own ξ:
+/// [`fbm3_stochastic`](super::fbm3_stochastic) at every point with its own ξ:
 /// `out[i] = fbm3_stochastic(points[i], f, seed, xi[i])` for the first `min` of the three
 /// lengths, whose count it returns. The lanes serve lacunarity 2 and gain ±½ (the paper's
 /// fBm); other parameters run one point at a time.

@@ -239,7 +239,7 @@ impl OctavePick {
     }
 }
 
-/// The seed of octave `o` in [`Fbm`](super::Fbm) and the other fractal sums: each octave is an independent
+/// The seed of octave `o` in [`Fbm`] and the other fractal sums: each octave is an independent
 /// noise. For building a sum with [`fractal`] or [`fractal_tail_estimate`] that matches them.
 #[inline(always)]
 pub fn octave_seed(seed: u32, o: u32) -> u32 {

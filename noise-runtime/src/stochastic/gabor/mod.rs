@@ -4,7 +4,7 @@
 //! `e^(−π a² r²) cos(2π F₀ ω·(p − p_i))`, truncated at `r = 1` (the cell size). The estimator
 //! samples one impulse per cell with probability `(2i + 1)/n_c²`.
 //!
-//! [`GaborNoise`](super::GaborNoise) is the form to keep in a renderer: the parameters prepared
+//! [`GaborNoise`] is the form to keep in a renderer: the parameters prepared
 //! once. The tests keep the plain statement (`gabor3`, `gabor3_stochastic`: a CDF built on every
 //! call) as the tables' reference.
 
@@ -52,7 +52,7 @@ impl Gabor {
 }
 
 /// The CDF of the Poisson distribution with mean λ at `0..63`, built once per call of the free
-/// functions (once per [`GaborNoise`](super::GaborNoise)) so each cell's count is a branch-free binary search
+/// functions (once per [`GaborNoise`]) so each cell's count is a branch-free binary search
 /// instead of an inversion loop (a division per step and a mispredicted exit per cell).
 ///
 /// Entries 63 and 64 are 2, above every `u`: [`PoissonGuide`] reads up to two entries past a
@@ -212,7 +212,7 @@ impl PoissonGuide {
 }
 
 /// Gabor parameters sanitised and their Poisson tables built: what
-/// [`GaborNoise`](super::GaborNoise) keeps. The tests' `gabor3` and `gabor3_stochastic` build a CDF on
+/// [`GaborNoise`] keeps. The tests' `gabor3` and `gabor3_stochastic` build a CDF on
 /// every call (63 running sums, a chain of dependent multiplies and adds) and search it for
 /// each cell's count; the tables find a count in one read. Same values, bit for bit.
 #[derive(Clone, Debug)]

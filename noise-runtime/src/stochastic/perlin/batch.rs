@@ -133,7 +133,7 @@ pub(crate) fn perlin3_stochastic_lanes<L: Lanes8, const UNIT: bool>(
     gradient_dot(cpu, &h, &d[0], &d[1], &d[2])
 }
 
-/// [`perlin3_batch`](super::perlin3_batch) on eight lanes (`points` and `out` of one length).
+/// [`perlin3_batch`] on eight lanes (`points` and `out` of one length).
 #[inline(always)]
 pub(crate) fn perlin3<L: Lanes8>(cpu: L, points: &[[f32; 3]], seed: u32, out: &mut [f32]) {
     chunks!(
@@ -144,7 +144,7 @@ pub(crate) fn perlin3<L: Lanes8>(cpu: L, points: &[[f32; 3]], seed: u32, out: &m
     );
 }
 
-/// [`perlin3_stochastic_batch`](super::perlin3_stochastic_batch) on eight lanes (slices of one
+/// [`perlin3_stochastic_batch`] on eight lanes (slices of one
 /// length).
 #[inline(always)]
 pub(crate) fn perlin3_stochastic<L: Lanes8>(
@@ -166,13 +166,13 @@ pub(crate) fn perlin3_stochastic<L: Lanes8>(
     );
 }
 
-/// [`perlin3`] at every point: `out[i] = perlin3(points[i], seed)` for the
+/// [`perlin3`](super::perlin3) at every point: `out[i] = perlin3(points[i], seed)` for the
 /// first `min(points.len(), out.len())` points, whose count it returns.
 pub fn perlin3_batch(points: &[[f32; 3]], seed: u32, out: &mut [f32]) -> usize {
     perlin3_batch_on(Path::best(), points, seed, out)
 }
 
-/// [`perlin3_stochastic`] at every point with its own ξ:
+/// [`perlin3_stochastic`](super::perlin3_stochastic) at every point with its own ξ:
 /// `out[i] = perlin3_stochastic(points[i], seed, xi[i])` for the first `min` of the three
 /// lengths, whose count it returns.
 pub fn perlin3_stochastic_batch(

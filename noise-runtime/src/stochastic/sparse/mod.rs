@@ -438,7 +438,7 @@ impl SparseConvolutionFbm {
     }
 
     /// The first `exact` octaves exact, one octave of the rest chosen by ξ and evaluated
-    /// exactly (as [`Fbm::estimate_octave`]).
+    /// exactly (as [`Fbm::estimate_octave`](super::Fbm::estimate_octave)).
     #[must_use]
     #[inline]
     pub fn estimate_octave(self, p: [f32; 3], exact: u32, xi: f32) -> f32 {

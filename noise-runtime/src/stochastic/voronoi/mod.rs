@@ -315,7 +315,7 @@ impl SmoothVoronoi {
     }
 
     /// An unbiased estimate with the paper's roulette probability
-    /// ([`SMOOTH_VORONOI_Q`](super::SMOOTH_VORONOI_Q)).
+    /// ([`SMOOTH_VORONOI_Q`]).
     #[must_use]
     #[inline]
     pub fn estimate(self, p: [f32; 3], xi: f32) -> f32 {
