@@ -101,9 +101,10 @@ enum Command {
     },
     /// The speed-against-error report: `fast` (FAST masks against every other mask after the
     /// filters they are made for), `stochastic` (noise functions), `cnj` (point sets, CNJ Table
-    /// 2), or `all` (the default).
+    /// 2), or `all` (the default, these three); `bench` (bake time against size for every
+    /// generator, on one and two threads, beside its estimate: about 6 minutes on 2 cores).
     Report {
-        /// Which section: fast, stochastic, cnj or all.
+        /// Which section: fast, stochastic, cnj, all or bench.
         #[arg(default_value = "all")]
         section: String,
         /// Write the stochastic-noise rows as a JSON list (`{"noise", "variant", "ns_per_eval",
@@ -113,7 +114,8 @@ enum Command {
         /// Directory for plots and the FAST / CNJ JSON details.
         #[arg(long, default_value = "target/noisebake-report")]
         out: PathBuf,
-        /// Include the slow full-size cases (FAST 128×128×32 cosine hemisphere).
+        /// Include the slow full-size cases (FAST 128×128×32 cosine hemisphere; for `bench`,
+        /// void and cluster at 2048²).
         #[arg(long)]
         full: bool,
         /// Run the FAST paper's own schedule against our optimiser on 64×64×16 cosine
@@ -513,10 +515,26 @@ fn report(
 ) -> Result<(), String> {
     let mut log = |s: &str| println!("{s}");
     let mut doc = serde_json::Map::new();
-    if !matches!(section, "all" | "fast" | "stochastic" | "cnj") {
+    if !matches!(section, "all" | "fast" | "stochastic" | "cnj" | "bench") {
         return Err(format!(
-            "unknown report section `{section}`: use fast, stochastic, cnj or all"
+            "unknown report section `{section}`: use fast, stochastic, cnj, all or bench"
         ));
+    }
+    if section == "bench" {
+        println!(
+            "bake time against size (wall seconds; estimate: what `gen` and build scripts announce, and its ratio to the time):"
+        );
+        let b = noisebake_cli::report::bench::run(out, full, &mut log)?;
+        println!("  fitted exponent of time against texels (1 = linear):");
+        for f in &b.fits {
+            println!("  {:<48} {} thr  {:.2}", f.case, f.threads, f.exponent);
+        }
+        println!(
+            "  wrote {} and {}",
+            out.join("bench.json").display(),
+            out.join("bench.png").display()
+        );
+        return Ok(());
     }
     if json.is_some() && !matches!(section, "all" | "stochastic") {
         return Err(format!(
@@ -663,7 +681,7 @@ fn report(
 }
 
 fn points_cmd(method: &str, n: usize, seed: u64, out: &Path, analyze: bool) -> Result<(), String> {
-    use noisebake_cli::points::{METHODS, Method, generate};
+    use noisebake_cli::points::{METHODS, Method, generate_with_progress};
     let m = Method::parse(method).ok_or_else(|| {
         format!(
             "unknown point method `{method}`; valid: {}",
@@ -687,7 +705,27 @@ fn points_cmd(method: &str, n: usize, seed: u64, out: &Path, analyze: bool) -> R
         ));
     }
     let start = Instant::now();
-    let pts = generate(m, n, seed);
+    // A bar once the run has taken 2 s (`cnj-iterative` integrates 64 RK4 steps a point:
+    // 10 million points take about 20 s).
+    let mut bar: Option<ProgressBar> = None;
+    let pts = generate_with_progress(m, n, seed, &mut |done, total| {
+        if bar.is_none() && done < total && start.elapsed() > Duration::from_secs(2) {
+            let b = ProgressBar::new(total);
+            b.set_style(
+                ProgressStyle::with_template("{msg} [{bar:40}] {percent}% ({elapsed}, eta {eta})")
+                    .expect("static template")
+                    .progress_chars("=> "),
+            );
+            b.set_message(format!("{method} points"));
+            bar = Some(b);
+        }
+        if let Some(b) = &bar {
+            b.set_position(done);
+        }
+    });
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
     let secs = start.elapsed().as_secs_f64();
     let mut text = String::with_capacity(pts.len() * 24);
     for p in &pts {

@@ -53,7 +53,13 @@ fn tri_spacing(n: usize) -> f64 {
 
 /// Points of a jittered triangular lattice that fall in `[0, 1)²` (about `n` of them): the
 /// lattice (spacing for density `n`, random offset) is displaced by `jitter` in lattice units.
-fn lattice_points(n: usize, seed: u64, jitter: impl Fn([i32; 2]) -> [f64; 2]) -> Vec<[f64; 2]> {
+/// `progress(rows done, rows)` is called after each row of sites.
+fn lattice_points(
+    n: usize,
+    seed: u64,
+    jitter: impl Fn([i32; 2]) -> [f64; 2],
+    progress: &mut dyn FnMut(u64, u64),
+) -> Vec<[f64; 2]> {
     let d = tri_spacing(n);
     let mut rng = SplitMix64::new(derive_seed(seed, 0x0ff5e7));
     let off = [rng.unit_f64(), rng.unit_f64()];
@@ -61,7 +67,9 @@ fn lattice_points(n: usize, seed: u64, jitter: impl Fn([i32; 2]) -> [f64; 2]) ->
     let rows = (1.0 / (d * 0.866_025_403_784_438_6)).ceil() as i32 + 2;
     let cols = (1.0 / d).ceil() as i32 + 2;
     let mut out = Vec::with_capacity(n + n / 8);
+    let total = (rows + 2) as u64;
     for j in -2..rows {
+        progress((j + 2) as u64, total);
         for i in -2..cols {
             let base = Cnj2::site_position([i, j]);
             let jt = jitter([i, j]);
@@ -77,39 +85,60 @@ fn lattice_points(n: usize, seed: u64, jitter: impl Fn([i32; 2]) -> [f64; 2]) ->
 
 /// Generates about `n` points with `method` and `seed`.
 pub fn generate(method: Method, n: usize, seed: u64) -> Vec<[f64; 2]> {
+    generate_with_progress(method, n, seed, &mut |_, _| {})
+}
+
+/// [`generate`], calling `progress(done, total)` as it goes (rows of lattice sites for the
+/// lattice methods; once at the end for the others) so long runs can show a bar.
+pub fn generate_with_progress(
+    method: Method,
+    n: usize,
+    seed: u64,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Vec<[f64; 2]> {
     let n = n.max(1);
-    match method {
-        Method::Lattice => lattice_points(n, seed, |_| [0.0, 0.0]),
+    let pts = match method {
+        Method::Lattice => lattice_points(n, seed, |_| [0.0, 0.0], progress),
         Method::Cnj => {
             let c = Cnj2::default().with_seed(seed as u32);
-            lattice_points(n, seed, |s| {
-                let d = c.displacement(s);
-                [d[0] as f64, d[1] as f64]
-            })
+            lattice_points(
+                n,
+                seed,
+                |s| {
+                    let d = c.displacement(s);
+                    [d[0] as f64, d[1] as f64]
+                },
+                progress,
+            )
         }
         Method::CnjIterative => {
             let (t0, s) = (Cnj2::PAPER.time() as f64, Cnj2::PAPER.scale() as f64);
-            lattice_points(n, seed, |site| {
-                let p0 = Cnj2::site_position(site);
-                let mut p = p0;
-                let mut t = t0;
-                for it in 0..64u32 {
-                    let sd = (seed as u32).wrapping_add(it.wrapping_mul(0x9e37_79b9));
-                    let v = |q: [f64; 2]| {
-                        let v = velocity2(q, s, sd);
-                        [v[0] as f64, v[1] as f64]
-                    };
-                    let k1 = v(p);
-                    let k2 = v([p[0] + 0.5 * t * k1[0], p[1] + 0.5 * t * k1[1]]);
-                    let k3 = v([p[0] + 0.5 * t * k2[0], p[1] + 0.5 * t * k2[1]]);
-                    let k4 = v([p[0] + t * k3[0], p[1] + t * k3[1]]);
-                    for a in 0..2 {
-                        p[a] += t / 6.0 * (k1[a] + 2.0 * k2[a] + 2.0 * k3[a] + k4[a]);
+            lattice_points(
+                n,
+                seed,
+                |site| {
+                    let p0 = Cnj2::site_position(site);
+                    let mut p = p0;
+                    let mut t = t0;
+                    for it in 0..64u32 {
+                        let sd = (seed as u32).wrapping_add(it.wrapping_mul(0x9e37_79b9));
+                        let v = |q: [f64; 2]| {
+                            let v = velocity2(q, s, sd);
+                            [v[0] as f64, v[1] as f64]
+                        };
+                        let k1 = v(p);
+                        let k2 = v([p[0] + 0.5 * t * k1[0], p[1] + 0.5 * t * k1[1]]);
+                        let k3 = v([p[0] + 0.5 * t * k2[0], p[1] + 0.5 * t * k2[1]]);
+                        let k4 = v([p[0] + t * k3[0], p[1] + t * k3[1]]);
+                        for a in 0..2 {
+                            p[a] += t / 6.0 * (k1[a] + 2.0 * k2[a] + 2.0 * k3[a] + k4[a]);
+                        }
+                        t *= 0.5;
                     }
-                    t *= 0.5;
-                }
-                [p[0] - p0[0], p[1] - p0[1]]
-            })
+                    [p[0] - p0[0], p[1] - p0[1]]
+                },
+                progress,
+            )
         }
         Method::Jitter => {
             let side = (n as f64).sqrt().round().max(1.0) as usize;
@@ -128,7 +157,9 @@ pub fn generate(method: Method, n: usize, seed: u64) -> Vec<[f64; 2]> {
             (0..n).map(|_| [rng.unit_f64(), rng.unit_f64()]).collect()
         }
         Method::PoissonDisk => bridson(n, seed),
-    }
+    };
+    progress(1, 1);
+    pts
 }
 
 /// Bridson (2007) Poisson-disk sampling on the unit torus with `k = 30` candidates per active

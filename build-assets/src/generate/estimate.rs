@@ -1,11 +1,13 @@
 //! What a generation will cost, said before it starts: the CLI prints it above its progress
 //! bar, and a build script prints it as a `cargo:warning` for bakes long enough to notice.
 //!
-//! A rough model, right within a small factor: void and cluster places every texel once and
-//! updates the energy of its footprint, `n · (a + b · footprint)`; FAST runs rounds over every
-//! texel's coupled pairs until the loss stops improving, `n · footprint · rounds · c`, with the
-//! round count it typically needs. The constants were fitted to single-thread runs of the
-//! generators on a 2-core x86_64 machine; a faster one takes less.
+//! A rough model, held within a factor of two of the measured time by `noisebake report bench`
+//! (every kind at three sizes, on one and two threads): void and cluster places every texel once
+//! and updates the energy of its footprint, `n · (a + b · footprint)`, slower per texel once its
+//! energy field no longer fits in the caches (it runs on one thread); FAST runs rounds over every
+//! texel's coupled pairs, `n · footprint · rounds · c`, with the round count it typically needs,
+//! shared among as many threads as a colour has tiles. The constants were fitted on a 2-core
+//! x86_64 machine; a faster one takes less.
 
 use crate::generate::fast::SampleSpace;
 use crate::spec::{Kind, TextureSpec};
@@ -26,18 +28,27 @@ pub struct Estimate {
 const VAC_A: f64 = 9e-7;
 /// Seconds per energy update.
 const VAC_B: f64 = 8e-10;
-/// Seconds per coupled pair and round, scalar FAST.
-const FAST_C: f64 = 4e-10;
+/// Exponent of the slowdown once the energy field outgrows the caches.
+const VAC_SPILL: f64 = 0.55;
+/// CPU seconds per coupled pair and round, scalar FAST.
+const FAST_C: f64 = 1.9e-10;
+/// CPU seconds per proposal (one per texel and round), whatever the footprint.
+const FAST_PROPOSAL: f64 = 2.5e-7;
 /// Vector sample spaces cost this much more per pair (a distance in 2–4 dimensions).
-const FAST_VECTOR: f64 = 6.0;
+const FAST_VECTOR: f64 = 9.0;
 /// Rounds FAST typically runs before it converges.
 const FAST_ROUNDS: f64 = 40.0;
 
 /// Generations expected to take longer than this get an up-front message.
 pub const ANNOUNCE_SECONDS: f64 = 10.0;
 
-/// The estimate of `spec`.
+/// The estimate of `spec` on the threads the generator will get (rayon's current pool).
 pub fn estimate(spec: &TextureSpec) -> Estimate {
+    estimate_with_threads(spec, rayon::current_num_threads())
+}
+
+/// The estimate of `spec` on `threads` worker threads.
+pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
     let n = spec.texels() as u64;
     match &spec.kind {
         Kind::Fast(p) => {
@@ -50,10 +61,17 @@ pub fn estimate(spec: &TextureSpec) -> Estimate {
             let rounds = p
                 .iterations
                 .map_or(FAST_ROUNDS, |r| (r as f64).min(FAST_ROUNDS));
+            // Tiles of one colour run in parallel (`optimize`): at least 16 texels and the
+            // footprint's radius wide, an even number per axis.
+            let f = p.footprint(&spec.dims);
+            let tiles = |size: usize, r: usize| (size / 16usize.max(r + 1) / 2).max(1);
+            let parallel =
+                (tiles(spec.dims[0], f.radius[0]) * tiles(spec.dims[1], f.radius[1])) as f64;
+            let speedup = (threads as f64).min(parallel).max(1.0);
             Estimate {
                 texels: n,
                 footprint: fp,
-                seconds: n as f64 * fp as f64 * rounds * per,
+                seconds: n as f64 * rounds * (FAST_PROPOSAL + fp as f64 * per) / speedup,
             }
         }
         Kind::White => Estimate {
@@ -63,10 +81,16 @@ pub fn estimate(spec: &TextureSpec) -> Estimate {
         },
         _ => {
             let fp = crate::spec::splat_footprint(spec);
+            // Past a megabyte of energies (4 bytes a texel) the field spills out of the
+            // caches and every splat and queue refresh waits on memory: measured 1.8–2.1×
+            // slower per texel for each 4× texels beyond it.
+            let spill = (n as f64 * 4.0 / (1u64 << 20) as f64)
+                .max(1.0)
+                .powf(VAC_SPILL);
             Estimate {
                 texels: n,
                 footprint: fp,
-                seconds: n as f64 * (VAC_A + VAC_B * fp as f64),
+                seconds: n as f64 * (VAC_A + VAC_B * fp as f64) * spill,
             }
         }
     }
@@ -109,5 +133,19 @@ mod tests {
         ));
         assert!(fast.seconds > ANNOUNCE_SECONDS, "{fast}");
         assert!(format!("{fast}").contains("texels"));
+    }
+
+    /// FAST shares a round among the tiles of a colour: two threads halve a large mask's
+    /// estimate, and do nothing for one whose colours have a single tile; void and cluster
+    /// runs on one thread whatever the pool.
+    #[test]
+    fn estimates_follow_the_parallelism_the_generators_have() {
+        let big = spec("kind = \"fast\"\ndims = [128, 128, 64]");
+        let small = spec("kind = \"fast\"\ndims = [32, 32, 64]");
+        let stbn = spec("kind = \"stbn\"\ndims = [64, 64, 32]");
+        let t = |s: &TextureSpec, n| estimate_with_threads(s, n).seconds;
+        assert!((t(&big, 1) / t(&big, 2) - 2.0).abs() < 1e-9);
+        assert_eq!(t(&small, 1), t(&small, 2));
+        assert_eq!(t(&stbn, 1), t(&stbn, 2));
     }
 }

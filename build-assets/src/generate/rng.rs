@@ -29,7 +29,9 @@ impl SplitMix64 {
         loop {
             let m = (self.next_u64() as u128) * (n as u128);
             let low = m as u64;
-            if low >= n.wrapping_neg() % n {
+            // Lemire's rejection: the threshold `2^64 mod n` is below `n`, so a `low` of at
+            // least `n` is accepted without the division that computes it.
+            if low >= n || low >= n.wrapping_neg() % n {
                 return (m >> 64) as u64;
             }
         }

@@ -205,9 +205,7 @@ pub fn loss_as_rmse(loss: f64, values: &[f64], fp: &fast::Footprint) -> f64 {
 /// Loss and measured errors of one mask; `fps` are the footprints of β = 0 and β = 0.1.
 pub fn measure(name: &str, values: &[f64], dims: [usize; 3], fps: &[fast::Footprint; 2]) -> Row {
     let l = |fp: &fast::Footprint| {
-        fast::optimize::loss::<1, _>(dims, fp, values, |a: &[f64; 1], b: &[f64; 1]| {
-            (a[0] - b[0]).abs()
-        })
+        fast::optimize::loss::<1, _>(dims, fp, values, fast::distance::Scalar)
     };
     let d = |spatial: Filter| Denoiser {
         spatial: spatial.taps(),

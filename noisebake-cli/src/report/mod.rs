@@ -1,6 +1,7 @@
 //! The speed-against-error reports of the `noisebake report` command: every time is printed
 //! next to the error it was bought with.
 
+pub mod bench;
 pub mod compare;
 pub mod fast;
 pub mod stochastic;

@@ -23,11 +23,13 @@
 //!   scalars) they can only end below IGN's loss.
 //!
 //! - [`space`]: sample spaces, their stratified initialisation and distances;
+//! - [`distance`]: the distances of the loss, in `f64` and (for the optimiser's screen) `f32`;
 //! - [`filter`]: spatial and temporal filters (box, Gaussian, binomial, EMA with history
 //!   rejection, eq. 14–17) and the footprint of `F`;
 //! - [`optimize`]: exact sequential swaps on conflict-free tiles (eq. 8);
 //! - `paper` (feature `research`): the paper's GPU schedule (random pairings, all at once), a baseline for reports.
 
+pub mod distance;
 pub mod filter;
 pub mod optimize;
 #[cfg(feature = "research")]
@@ -65,31 +67,16 @@ fn dims3(dims: &[usize]) -> [usize; 3] {
 macro_rules! with_metric {
     ($space:expr, $($f:ident)::+ ( $($arg:expr),* )) => {
         match $space {
-            SampleSpace::Scalar => $($f)::+::<1, _>($($arg,)* |a: &[f64; 1], b: &[f64; 1]| (a[0] - b[0]).abs()),
-            SampleSpace::Circle => $($f)::+::<1, _>($($arg,)* |a: &[f64; 1], b: &[f64; 1]| {
-                let d = (a[0] - b[0]).abs();
-                d.min(1.0 - d)
-            }),
-            SampleSpace::Vec2 => $($f)::+::<2, _>($($arg,)* euclid::<2>),
-            SampleSpace::Vec3 => $($f)::+::<3, _>($($arg,)* euclid::<3>),
-            SampleSpace::Vec4 => $($f)::+::<4, _>($($arg,)* euclid::<4>),
+            SampleSpace::Scalar => $($f)::+::<1, _>($($arg,)* distance::Scalar),
+            SampleSpace::Circle => $($f)::+::<1, _>($($arg,)* distance::Circle),
+            SampleSpace::Vec2 => $($f)::+::<2, _>($($arg,)* distance::Euclid),
+            SampleSpace::Vec3 => $($f)::+::<3, _>($($arg,)* distance::Euclid),
+            SampleSpace::Vec4 => $($f)::+::<4, _>($($arg,)* distance::Euclid),
             SampleSpace::Sphere | SampleSpace::Hemisphere | SampleSpace::CosineHemisphere => {
-                $($f)::+::<3, _>($($arg,)* |a: &[f64; 3], b: &[f64; 3]| {
-                    space::acos_fast(a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
-                })
+                $($f)::+::<3, _>($($arg,)* distance::Sphere)
             }
         }
     };
-}
-
-#[inline(always)]
-fn euclid<const C: usize>(a: &[f64; C], b: &[f64; C]) -> f64 {
-    let mut s = 0.0;
-    for k in 0..C {
-        let d = a[k] - b[k];
-        s += d * d;
-    }
-    s.sqrt()
 }
 
 /// The stratified initialisation: every (x, y) slice holds its own stratified set in a random

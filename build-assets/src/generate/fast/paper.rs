@@ -50,7 +50,7 @@ pub fn optimize<const C: usize, D>(
     dist: D,
 ) -> Outcome
 where
-    D: Fn(&[f64; C], &[f64; C]) -> f64 + Sync,
+    D: super::distance::Distance<C>,
 {
     let Schedule {
         iterations,
@@ -59,7 +59,7 @@ where
     } = schedule;
     let start = Instant::now();
     let [w, h, n] = dims;
-    let state = to_state::<C>(&samples);
+    let state = to_state::<C>(&samples, dims);
     let problem = Problem::new(fp, dims, dist);
     let initial_loss = problem.loss(&state);
     let mut curve = Vec::new();
@@ -93,7 +93,7 @@ where
                         .gain(&state, p, q, t, f64::INFINITY)
                         .is_some_and(|g| g > 0.0)
                     {
-                        out.push((t * w * h + a, t * w * h + b));
+                        out.push((problem.cell(p, t), problem.cell(q, t)));
                     }
                 }
                 (candidates, out)

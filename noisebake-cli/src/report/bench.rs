@@ -1,0 +1,226 @@
+//! The scaling benchmark (`noisebake report bench`): each generator at three sizes, on one
+//! and two threads, beside the estimate a user is shown up front
+//! ([`build_assets::generate::estimate`]) and, for FAST, the error after the filter the mask
+//! is made for. It fits the exponent of time against texels per kind (1 is linear) and writes
+//! the table as JSON and a log-log plot to the report folder; the README's bake times come
+//! from it.
+
+use crate::export::plot::{Labels, PALETTE, Series, line_plot};
+use crate::report::compare::{loss_params, measure};
+use build_assets::generate::estimate::estimate_with_threads;
+use build_assets::spec::TextureSpec;
+use serde::Serialize;
+use std::path::Path;
+use std::time::Instant;
+
+/// One bake.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// The kind and its parameters, as the table names it.
+    pub case: String,
+    /// Texture dimensions.
+    pub dims: Vec<usize>,
+    /// Texels.
+    pub texels: usize,
+    /// Worker threads.
+    pub threads: usize,
+    /// Measured wall time, seconds.
+    pub seconds: f64,
+    /// The up-front estimate for this many threads, seconds.
+    pub estimate: f64,
+    /// For FAST scalar masks: RMSE after Gaussian σ 1.3435 × plain EMA (α 0.1), the filter the
+    /// mask is made for (`report fast`'s measure).
+    pub rmse: Option<f64>,
+}
+
+/// A kind's fit: `seconds ∝ texels^exponent` over its three sizes, per thread count.
+#[derive(Clone, Debug, Serialize)]
+pub struct Fit {
+    /// The case.
+    pub case: String,
+    /// Worker threads.
+    pub threads: usize,
+    /// The fitted exponent (least squares on the logs).
+    pub exponent: f64,
+}
+
+/// The whole benchmark.
+#[derive(Clone, Debug, Serialize)]
+pub struct Bench {
+    /// Every bake.
+    pub rows: Vec<Row>,
+    /// Exponents per case and thread count.
+    pub fits: Vec<Fit>,
+}
+
+/// The cases: `(name, TOML body without dims, sizes)`.
+fn cases(full: bool) -> Vec<(&'static str, &'static str, Vec<Vec<usize>>)> {
+    let mut v2 = vec![vec![256, 256], vec![512, 512], vec![1024, 1024]];
+    if full {
+        v2.push(vec![2048, 2048]);
+    }
+    vec![
+        ("blue2d", "kind = \"blue2d\"", v2),
+        (
+            "stbn",
+            "kind = \"stbn\"",
+            vec![vec![64, 64, 64], vec![128, 128, 64], vec![256, 256, 64]],
+        ),
+        (
+            "fast scalar, gauss x plain EMA",
+            "kind = \"fast\"",
+            vec![vec![32, 32, 64], vec![64, 64, 64], vec![128, 128, 64]],
+        ),
+        (
+            "fast scalar, box 3 x plain EMA",
+            "kind = \"fast\"\nspatial_filter = { kind = \"box\", size = 3 }",
+            vec![vec![32, 32, 64], vec![64, 64, 64], vec![128, 128, 64]],
+        ),
+        (
+            "fast cosine hemisphere u8x3, box 5 x plain EMA",
+            "kind = \"fast\"\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 5 }",
+            vec![vec![32, 32, 32], vec![64, 64, 32], vec![128, 128, 32]],
+        ),
+    ]
+}
+
+fn spec(body: &str, dims: &[usize]) -> Result<TextureSpec, String> {
+    let text = format!("[[texture]]\nname = \"BENCH\"\n{body}\ndims = {dims:?}\nseed = 1\n");
+    let file = build_assets::spec::parse_toml(&text).map_err(|e| e.render("bench", &text))?;
+    Ok(file.textures.into_iter().next().expect("one texture"))
+}
+
+/// Least-squares slope of `ln y` against `ln x`.
+pub fn exponent(points: &[(f64, f64)]) -> f64 {
+    let n = points.len() as f64;
+    let (lx, ly): (Vec<f64>, Vec<f64>) = points.iter().map(|&(x, y)| (x.ln(), y.ln())).unzip();
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let sxy: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = lx.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
+
+/// Runs the benchmark (with `full`, also void and cluster at 2048²), logging each bake, and
+/// writes `bench.json` and `bench.png` into `out`.
+pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<Bench, String> {
+    let mut rows = Vec::new();
+    for (name, body, sizes) in cases(full) {
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| e.to_string())?;
+            for dims in &sizes {
+                let s = spec(body, dims)?;
+                let est = estimate_with_threads(&s, threads).seconds;
+                let start = Instant::now();
+                let tex = pool.install(|| build_assets::generate(&s, &mut |_, _| {}));
+                let seconds = start.elapsed().as_secs_f64();
+                let rmse = (name.starts_with("fast scalar")).then(|| {
+                    let d = [dims[0], dims[1], dims[2]];
+                    let fps = [
+                        loss_params(0.0).footprint(dims),
+                        loss_params(0.1).footprint(dims),
+                    ];
+                    measure("", &tex.values(), d, &fps).rmse_gauss
+                });
+                let row = Row {
+                    case: name.to_string(),
+                    dims: dims.clone(),
+                    texels: s.texels(),
+                    threads,
+                    seconds,
+                    estimate: est,
+                    rmse,
+                };
+                log(&describe(&row));
+                rows.push(row);
+            }
+        }
+    }
+    let mut fits = Vec::new();
+    let mut series = Vec::new();
+    for (k, (name, _, _)) in cases(full).iter().enumerate() {
+        for threads in [1, 2] {
+            let pts: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.case == *name && r.threads == threads)
+                .map(|r| (r.texels as f64, r.seconds))
+                .collect();
+            fits.push(Fit {
+                case: name.to_string(),
+                threads,
+                exponent: exponent(&pts),
+            });
+            series.push(Series {
+                label: format!(
+                    "{name} ({threads} thread{})",
+                    if threads > 1 { "s" } else { "" }
+                ),
+                color: PALETTE[(2 * k + threads - 1) % PALETTE.len()],
+                points: pts.iter().map(|&(x, y)| (x.log10(), y)).collect(),
+            });
+        }
+    }
+    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
+    let bench = Bench { rows, fits };
+    let json = serde_json::to_string_pretty(&bench).map_err(|e| e.to_string())?;
+    std::fs::write(out.join("bench.json"), json).map_err(|e| e.to_string())?;
+    line_plot(
+        &out.join("bench.png"),
+        &series,
+        &Labels {
+            title: "bake time against size".into(),
+            x: "log10 texels".into(),
+            y: "seconds (log)".into(),
+        },
+        true,
+    )?;
+    Ok(bench)
+}
+
+/// One line of the table.
+pub fn describe(r: &Row) -> String {
+    let dims = r
+        .dims
+        .iter()
+        .map(|d| d.to_string())
+        .collect::<Vec<_>>()
+        .join("×");
+    let rmse = r.rmse.map_or(String::new(), |e| format!("  rmse {e:.5}"));
+    format!(
+        "  {:<48} {:>12} {} thr {:>8.2} s  estimate {:>7.2} s ({:.2}×){rmse}",
+        r.case,
+        dims,
+        r.threads,
+        r.seconds,
+        r.estimate,
+        r.estimate / r.seconds
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fit_recovers_a_power_law() {
+        let pts: Vec<(f64, f64)> = [1e4, 4e4, 1.6e5]
+            .iter()
+            .map(|&x: &f64| (x, 3e-6 * x.powf(1.3)))
+            .collect();
+        assert!((exponent(&pts) - 1.3).abs() < 1e-9);
+        let linear: Vec<(f64, f64)> = [1.0, 2.0, 8.0].iter().map(|&x| (x, 5.0 * x)).collect();
+        assert!((exponent(&linear) - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn every_case_parses_at_every_size() {
+        for (name, body, sizes) in cases(true) {
+            for dims in sizes {
+                let s = spec(body, &dims).unwrap_or_else(|e| panic!("{name} {dims:?}: {e}"));
+                assert_eq!(s.texels(), dims.iter().product::<usize>());
+            }
+        }
+    }
+}
