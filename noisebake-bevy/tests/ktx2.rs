@@ -130,6 +130,14 @@ fn bevys_ktx2_loader_reads_every_format_the_bake_writes() {
         ),
         case(
             d,
+            "u16x4",
+            &white(d3, "u16x4"),
+            |b| Box::new(Mask3::<[u16; 4], 16, 16, 4>::new(b)),
+            F::Rgba16Uint,
+            4,
+        ),
+        case(
+            d,
             "f32",
             &white(d3, "f32"),
             |b| Box::new(Mask3::<f32, 16, 16, 4>::new(b)),
