@@ -228,6 +228,28 @@ pub(super) struct Column {
     ring32: Vec<f32>,
 }
 
+/// The (at most two) contiguous runs of a column at slice `t` of `n`: `(taps, first frame)`
+/// pairs, the frames of each run consecutive in the time-fastest state. A column over the
+/// whole ring is one run over frames `0..n` against its doubled taps (`ring`).
+#[inline(always)]
+fn runs<'c, F>(taps: &'c [F], ring: &'c [F], lo: i32, t: usize, n: usize) -> [(&'c [F], usize); 2] {
+    // |lo| < n, so one conditional step wraps `t + lo` (no division).
+    let u = t as isize + lo as isize;
+    let u0 = if u < 0 {
+        (u + n as isize) as usize
+    } else if u >= n as isize {
+        u as usize - n
+    } else {
+        u as usize
+    };
+    if ring.is_empty() {
+        let first = taps.len().min(n - u0);
+        [(&taps[..first], u0), (&taps[first..], 0)]
+    } else {
+        [(&ring[n - u0..2 * n - u0], 0), (&ring[..0], 0)]
+    }
+}
+
 /// The columns of a footprint, heaviest (largest total weight) first. A column spans the ring
 /// interval from its lowest to its highest kept `dt`; offsets in between that the footprint
 /// dropped carry weight 0.
@@ -411,23 +433,8 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
             let a = self.torus.pixel(p[0], p[1], col.dx, col.dy) * n;
             let c = self.torus.pixel(q[0], q[1], col.dx, col.dy) * n;
             // Frames t + lo, t + lo + 1, … on the ring: at most two contiguous runs.
-            // |lo| < n, so one conditional step wraps `t + lo` (no division).
-            let u = t as isize + col.lo as isize;
-            let u0 = if u < 0 {
-                (u + n as isize) as usize
-            } else if u >= n as isize {
-                u as usize - n
-            } else {
-                u as usize
-            };
             let mut lanes = [0.0f64; LANES];
-            let runs = if col.ring.is_empty() {
-                let first = col.taps.len().min(n - u0);
-                [(&col.taps[..first], u0), (&col.taps[first..], 0)]
-            } else {
-                [(&col.ring[n - u0..2 * n - u0], 0), (&col.ring[..0], 0)]
-            };
-            for (taps, u) in runs {
+            for (taps, u) in runs(&col.taps, &col.ring, col.lo, t, n) {
                 let (ra, rc) = (s.run(a + u, taps.len()), s.run(c + u, taps.len()));
                 let whole = taps.len() / LANES * LANES;
                 for ((f, ra), rc) in taps[..whole]
@@ -517,22 +524,8 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
         for (m, col) in self.columns.iter().enumerate() {
             let a = self.torus.pixel(p[0], p[1], col.dx, col.dy) * n;
             let c = self.torus.pixel(q[0], q[1], col.dx, col.dy) * n;
-            let u = t as isize + col.lo as isize;
-            let u0 = if u < 0 {
-                (u + n as isize) as usize
-            } else if u >= n as isize {
-                u as usize - n
-            } else {
-                u as usize
-            };
             let mut lanes = [0.0f32; LANES32];
-            let runs = if col.ring32.is_empty() {
-                let first = col.taps32.len().min(n - u0);
-                [(&col.taps32[..first], u0), (&col.taps32[first..], 0)]
-            } else {
-                [(&col.ring32[n - u0..2 * n - u0], 0), (&col.ring32[..0], 0)]
-            };
-            for (taps, u) in runs {
+            for (taps, u) in runs(&col.taps32, &col.ring32, col.lo, t, n) {
                 let (ra, rc) = (s.run32(a + u, taps.len()), s.run32(c + u, taps.len()));
                 let whole = taps.len() / LANES32 * LANES32;
                 for ((f, ra), rc) in taps[..whole]
