@@ -376,8 +376,10 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
     /// With a finite `screen` κ it also gives up once the partial sum is below
     /// `−κ · d(s_i, s_j) · √(Σ F²_unvisited)` (see [`SCREENS`]); `f64::INFINITY` is exact.
     ///
-    /// The sum over a column runs in four interleaved partial sums, added in a fixed order at
-    /// the column's end: the same bits whether or not the compiler vectorises it.
+    /// The sum over a column runs in [`LANES`] interleaved partial sums, added in a fixed order
+    /// at the column's end: the same bits whether or not the compiler vectorises it. The `f32`
+    /// screen ([`survives`](Self::survives)) repeats this walk in its own precision rather than
+    /// through a shared generic helper: that helper measured 12–15 % slower here.
     #[inline]
     pub(super) fn gain(
         &self,
@@ -396,7 +398,7 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
     }
 
     /// [`gain`](Self::gain) compiled for AVX2: the same operations in the same order, so the
-    /// same bits, four `f64` lanes to a register.
+    /// same bits, four `f64` to a register.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     unsafe fn gain_avx2(
