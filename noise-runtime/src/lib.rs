@@ -12,6 +12,8 @@
 //!   of a pixel through R2 offsets (STBN §5.2, FAST §6).
 //! - [`ldg`]: low-discrepancy grids computed on the fly (R2, plus-shaped, IGN, Bayer), exact for
 //!   huge coordinates, optionally animated per frame.
+//! - [`sampler`]: several decorrelated values per pixel per frame with no texture (IGN × R2,
+//!   the rotated R_d sequence, Owen-scrambled Sobol): the free baselines of vector masks.
 //! - [`sequence`]: the R2 and golden-ratio sequences in 64-bit fixed point.
 //! - [`hash`]: the integer hashes every lattice here uses (cells, corners, PCG).
 //! - [`warp`]: from uniform numbers to disks, spheres and hemispheres; safe at 0 and 1.
@@ -69,6 +71,7 @@ mod lanes;
 pub mod ldg;
 pub mod mask;
 pub mod math;
+pub mod sampler;
 pub mod sequence;
 pub mod shaders;
 pub mod stochastic;

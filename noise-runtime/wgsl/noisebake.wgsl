@@ -261,6 +261,127 @@ fn nb_pcg(v: u32) -> u32 {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Several values per pixel per frame, no texture (noise_runtime::sampler)
+
+// The four free per-pixel values as 32-bit fractions: IGN, R2, R2 and IGN with x and y swapped.
+fn nb_sampler_grids(p: vec2<i32>) -> vec4<u32> {
+    return vec4<u32>(nb_ign_bits(p), nb_r2_bits(p), nb_r2_bits(p.yx), nb_ign_bits(p.yx));
+}
+
+fn nb_to_unit4(f: vec4<u32>) -> vec4<f32> {
+    return vec4<f32>(nb_to_unit(f.x), nb_to_unit(f.y), nb_to_unit(f.z), nb_to_unit(f.w));
+}
+
+// IGN, R2, R2ᵀ and IGNᵀ of a pixel, each advanced by frame·(φ − 1) (sampler::ign_r2::<4>; take
+// .xy for a pair).
+fn nb_ign_r2(p: vec2<i32>, frame: u32) -> vec4<f32> {
+    return nb_to_unit4(nb_sampler_grids(p) + vec4<u32>(nb_golden(frame)));
+}
+
+// 2^64·φ_d^-(k+1) of the R3 and R4 sequences (R1 is NB_GOLDEN, R2 NB_R2_A1 and NB_R2_A2).
+const NB_R3_A1 = vec2<u32>(0xd192ed04u, 0xd1b54a32u);
+const NB_R3_A2 = vec2<u32>(0xfb8fac03u, 0xabc98388u);
+const NB_R3_A3 = vec2<u32>(0x2f3d8dd7u, 0x8cb92ba7u);
+const NB_R4_A1 = vec2<u32>(0x75ae2165u, 0xdb4f0b91u);
+const NB_R4_A2 = vec2<u32>(0x03a4615fu, 0xbbe05633u);
+const NB_R4_A3 = vec2<u32>(0xa1fe1576u, 0xa0f2ec75u);
+const NB_R4_A4 = vec2<u32>(0x7d9ed689u, 0x89e18285u);
+
+fn nb_rd2_bits(frame: u32) -> vec2<u32> {
+    return nb_r2_point(frame);
+}
+
+fn nb_rd3_bits(frame: u32) -> vec3<u32> {
+    return vec3<u32>(nb_frac_mul(frame, NB_R3_A1), nb_frac_mul(frame, NB_R3_A2), nb_frac_mul(frame, NB_R3_A3));
+}
+
+fn nb_rd4_bits(frame: u32) -> vec4<u32> {
+    return vec4<u32>(
+        nb_frac_mul(frame, NB_R4_A1), nb_frac_mul(frame, NB_R4_A2),
+        nb_frac_mul(frame, NB_R4_A3), nb_frac_mul(frame, NB_R4_A4),
+    );
+}
+
+// A value in [0, 1) as a 32-bit fraction.
+fn nb_fraction(v: f32) -> u32 {
+    return u32(clamp(v, 0.0, 1.0) * 4294967296.0);
+}
+
+// The frame-th point of R2 / R3, Cranley–Patterson rotated by values in [0, 1) (sampler::rd).
+fn nb_rd2(frame: u32, rotation: vec2<f32>) -> vec2<f32> {
+    let b = nb_rd2_bits(frame) + vec2<u32>(nb_fraction(rotation.x), nb_fraction(rotation.y));
+    return vec2<f32>(nb_to_unit(b.x), nb_to_unit(b.y));
+}
+
+fn nb_rd3(frame: u32, rotation: vec3<f32>) -> vec3<f32> {
+    let r = vec3<u32>(nb_fraction(rotation.x), nb_fraction(rotation.y), nb_fraction(rotation.z));
+    return nb_to_unit4(vec4<u32>(nb_rd3_bits(frame) + r, 0u)).xyz;
+}
+
+// R2 / R3 / R4 rotated by the free grids of nb_ign_r2 (sampler::rd_ign_r2).
+fn nb_rd2_ign_r2(p: vec2<i32>, frame: u32) -> vec2<f32> {
+    return nb_to_unit4(vec4<u32>(nb_rd2_bits(frame) + nb_sampler_grids(p).xy, 0u, 0u)).xy;
+}
+
+fn nb_rd3_ign_r2(p: vec2<i32>, frame: u32) -> vec3<f32> {
+    return nb_to_unit4(vec4<u32>(nb_rd3_bits(frame) + nb_sampler_grids(p).xyz, 0u)).xyz;
+}
+
+fn nb_rd4_ign_r2(p: vec2<i32>, frame: u32) -> vec4<f32> {
+    return nb_to_unit4(nb_rd4_bits(frame) + nb_sampler_grids(p));
+}
+
+// The first four dimensions of the index-th Sobol point as 32-bit fractions, the direction
+// numbers made by their recurrences as the index's bits are read (dimension 0 is the radical
+// inverse; 1–3 from x + 1, x² + x + 1 and x³ + x + 1).
+fn nb_sobol4(index: u32) -> vec4<u32> {
+    var out = vec4<u32>(reverseBits(index), 0u, 0u, 0u);
+    var n = index;
+    var v1 = 0x80000000u;
+    var v2 = vec2<u32>(0x80000000u, 0xc0000000u);
+    var v3 = vec3<u32>(0x80000000u, 0xc0000000u, 0x20000000u);
+    loop {
+        if (n == 0u) { break; }
+        if ((n & 1u) != 0u) {
+            out.y ^= v1;
+            out.z ^= v2.x;
+            out.w ^= v3.x;
+        }
+        v1 ^= v1 >> 1u;
+        v2 = vec2<u32>(v2.y, v2.x ^ (v2.x >> 2u) ^ v2.y);
+        v3 = vec3<u32>(v3.y, v3.z, v3.x ^ (v3.x >> 3u) ^ v3.y);
+        n >>= 1u;
+    }
+    return out;
+}
+
+// Burley's hash-based Owen scramble of a 32-bit fraction (Laine–Karras on reversed bits).
+fn nb_owen(x: u32, seed: u32) -> u32 {
+    var v = reverseBits(x);
+    v ^= v * 0x3d20adeau;
+    v += seed;
+    v *= (seed >> 16u) | 1u;
+    v ^= v * 0x05526c56u;
+    v ^= v * 0x53a22864u;
+    return reverseBits(v);
+}
+
+fn nb_seed_combine(seed: u32, v: u32) -> u32 {
+    return nb_mix(seed ^ (v + 0x9e3779b9u + (seed << 6u) + (seed >> 2u)));
+}
+
+// Four values of a pixel from the shuffled, Owen-scrambled Sobol sequence (Burley 2020)
+// (sampler::sobol_owen::<4>; the first D are those of smaller D).
+fn nb_sobol_owen(p: vec2<i32>, frame: u32, seed: u32) -> vec4<f32> {
+    let pixel = nb_hash2(p, seed);
+    let s = nb_sobol4(nb_owen(frame, pixel));
+    return nb_to_unit4(vec4<u32>(
+        nb_owen(s.x, nb_seed_combine(pixel, 0u)), nb_owen(s.y, nb_seed_combine(pixel, 1u)),
+        nb_owen(s.z, nb_seed_combine(pixel, 2u)), nb_owen(s.w, nb_seed_combine(pixel, 3u)),
+    ));
+}
+
+// ---------------------------------------------------------------------------------------------
 // 3D Perlin noise and fBm (noise_runtime::stochastic), deterministic and one-sample estimators
 // (Fajardo & Pharr, Algorithms 1 and 2)
 

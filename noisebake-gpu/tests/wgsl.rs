@@ -80,6 +80,13 @@ fn library_passes_naga_validation() {
         "nb_plus_frame",
         "nb_ign_frame",
         "nb_bayer_frame",
+        "nb_ign_r2",
+        "nb_rd2",
+        "nb_rd3",
+        "nb_rd2_ign_r2",
+        "nb_rd3_ign_r2",
+        "nb_rd4_ign_r2",
+        "nb_sobol_owen",
         "nb_pcg",
         "nb_hash3",
         "nb_cnj2_closest",
@@ -212,6 +219,76 @@ fn integer_functions_match_bit_for_bit() {
                 names[j],
                 inputs[i],
                 out[i * OUT + j]
+            );
+        }
+    }
+}
+
+/// The samplers of several values per pixel (`noise_runtime::sampler`) are integer arithmetic
+/// on 32-bit fractions: bit for bit, every value of every construction.
+#[test]
+fn samplers_match_bit_for_bit() {
+    use noisebake::sampler;
+    let Some(g) = gpu() else { return };
+    let mut rng = Rng(4);
+    let inputs: Vec<[i32; 4]> = (0..N)
+        .map(|_| {
+            let f = match rng.next_u64() % 3 {
+                0 => (rng.next_u64() % 256) as i32,
+                _ => rng.i32(),
+            };
+            [coord(&mut rng), coord(&mut rng), f, rng.i32()]
+        })
+        .collect();
+    let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
+    const OUT: usize = 22;
+    let kernel = kernel(
+        "vec4<i32>",
+        "@group(0) @binding(1) var<storage, read_write> outp: array<u32>;",
+        &format!(
+            "let p = inp[i];
+             let f = bitcast<u32>(p.z);
+             let s = bitcast<u32>(p.w);
+             let o = i * {OUT}u;
+             let a = bitcast<vec4<u32>>(nb_ign_r2(p.xy, f));
+             let b = bitcast<vec2<u32>>(nb_rd2_ign_r2(p.xy, f));
+             let c = bitcast<vec3<u32>>(nb_rd3_ign_r2(p.xy, f));
+             let d = bitcast<vec4<u32>>(nb_rd4_ign_r2(p.xy, f));
+             let e = bitcast<vec4<u32>>(nb_sobol_owen(p.xy, f, s));
+             let rot = vec3<f32>(nb_r2(p.xy), nb_to_unit(s), nb_to_unit(bitcast<u32>(p.x)));
+             let r2 = bitcast<vec2<u32>>(nb_rd2(f, rot.xy));
+             let r3 = bitcast<vec3<u32>>(nb_rd3(f, rot));
+             outp[o + 0u] = a.x; outp[o + 1u] = a.y; outp[o + 2u] = a.z; outp[o + 3u] = a.w;
+             outp[o + 4u] = b.x; outp[o + 5u] = b.y;
+             outp[o + 6u] = c.x; outp[o + 7u] = c.y; outp[o + 8u] = c.z;
+             outp[o + 9u] = d.x; outp[o + 10u] = d.y; outp[o + 11u] = d.z; outp[o + 12u] = d.w;
+             outp[o + 13u] = e.x; outp[o + 14u] = e.y; outp[o + 15u] = e.z; outp[o + 16u] = e.w;
+             outp[o + 17u] = r2.x; outp[o + 18u] = r2.y;
+             outp[o + 19u] = r3.x; outp[o + 20u] = r3.y; outp[o + 21u] = r3.z;"
+        ),
+    );
+    let out = words(&run(g, &kernel, &bytes_of(&flat), N, N * OUT * 4));
+    let unit = |v: u32| sequence::to_unit(v);
+    for (i, &[x, y, f, s]) in inputs.iter().enumerate() {
+        let (f, s) = (f as u32, s as u32);
+        let rot = [ldg::r2(x, y), unit(s), unit(x as u32)];
+        let cpu: Vec<f32> = [
+            sampler::ign_r2::<4>(x, y, f).to_vec(),
+            sampler::rd_ign_r2::<2>(x, y, f).to_vec(),
+            sampler::rd_ign_r2::<3>(x, y, f).to_vec(),
+            sampler::rd_ign_r2::<4>(x, y, f).to_vec(),
+            sampler::sobol_owen::<4>(x, y, f, s).to_vec(),
+            sampler::rd::<2>(f, [rot[0], rot[1]]).to_vec(),
+            sampler::rd::<3>(f, rot).to_vec(),
+        ]
+        .concat();
+        for (j, c) in cpu.iter().enumerate() {
+            assert_eq!(
+                out[i * OUT + j],
+                c.to_bits(),
+                "value {j} at {:?}: GPU {}, CPU {c}",
+                inputs[i],
+                f32::from_bits(out[i * OUT + j])
             );
         }
     }
