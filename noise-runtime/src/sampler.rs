@@ -406,8 +406,8 @@ mod tests {
                 "d = {d}: φ^(d+1) − φ − 1 = {}",
                 p - phi - 1.0
             );
-            for k in 1..d {
-                let ak = RD_ALPHA[d - 1][k] as f64 / 18_446_744_073_709_551_616.0;
+            for (k, &alpha) in RD_ALPHA[d - 1].iter().enumerate().take(d).skip(1) {
+                let ak = alpha as f64 / 18_446_744_073_709_551_616.0;
                 let mut want = a0;
                 for _ in 0..k {
                     want *= a0;
