@@ -14,10 +14,14 @@ const SPECS: &[&str] = &[
     "kind = \"white\"\ndims = [16, 16, 4]\nseed = 2",
     // EA's history rejection (β 0.1), the default before 0.1.0.
     "kind = \"fast\"\ndims = [16, 16, 4]\nseed = 5\nformat = \"u16\"\niterations = 4\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }",
-    "kind = \"fast\"\ndims = [16, 16, 2]\nseed = 5\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 3 }\niterations = 3\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }",
+    "kind = \"fast\"\ndims = [16, 16, 2]\nseed = 5\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 3 }\niterations = 3\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }\nstart = \"random\"",
     // The default temporal filter, the plain EMA (β 0).
     "kind = \"fast\"\ndims = [16, 16, 4]\nseed = 5\nformat = \"u16\"\niterations = 4",
+    "kind = \"fast\"\ndims = [16, 16, 2]\nseed = 5\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 3 }\niterations = 3\nstart = \"random\"",
+    // The default starts of two-value spaces: the free pair (ign_r2 under a box, rd_ign_r2
+    // otherwise), which go through the runtime's f32 warps.
     "kind = \"fast\"\ndims = [16, 16, 2]\nseed = 5\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 3 }\niterations = 3",
+    "kind = \"fast\"\ndims = [16, 16, 4]\nseed = 5\nsample_space = \"sphere\"\nformat = \"u16x3\"\nspatial_filter = { kind = \"gauss\", sigma = 1.0 }\niterations = 3",
 ];
 
 #[test]
@@ -55,7 +59,7 @@ fn output_matches_the_golden_digests() {
     );
 }
 
-const GOLDEN: [u64; 10] = [
+const GOLDEN: [u64; 12] = [
     0x02bcc607887f687d,
     0xcb5fdf9617060b15,
     0x893f58b1ed87e261,
@@ -66,4 +70,6 @@ const GOLDEN: [u64; 10] = [
     0x66b74f98b2fb8569,
     0x3e25ae57aee1bfd5,
     0xec72c00d766b7a25,
+    0x1a6fc64ea2ffa362,
+    0xd569656c31a8846c,
 ];

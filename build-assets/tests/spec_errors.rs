@@ -274,3 +274,29 @@ fn fast_defaults_to_the_plain_ema_games_run() {
         TemporalFilter::None
     );
 }
+
+#[test]
+fn free_pair_starts_need_a_space_made_from_two_values() {
+    has(
+        &error("kind = \"fast\"\ndims = [16, 16, 4]\nstart = \"ign_r2\""),
+        &[
+            "`start = \"ign_r2\"` warps a pair of values",
+            "\"scalar\"",
+            "noise.toml:5:9:",
+        ],
+    );
+    has(
+        &error(
+            "kind = \"fast\"\ndims = [16, 16, 4]\nsample_space = \"vec3\"\nformat = \"u8x3\"\nstart = \"rd_ign_r2\"",
+        ),
+        &[
+            "`start = \"rd_ign_r2\"`",
+            "\"vec3\"",
+            "vec2, sphere, hemisphere or cosine_hemisphere",
+        ],
+    );
+    has(
+        &error("kind = \"fast\"\ndims = [16, 16, 4]\nstart = \"sobol\""),
+        &["\"random\", \"ign\", \"ign_r2\" or \"rd_ign_r2\", got \"sobol\""],
+    );
+}

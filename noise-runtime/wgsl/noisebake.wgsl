@@ -263,19 +263,43 @@ fn nb_pcg(v: u32) -> u32 {
 // ---------------------------------------------------------------------------------------------
 // Several values per pixel per frame, no texture (noise_runtime::sampler)
 
-// The four free per-pixel values as 32-bit fractions: IGN, R2, R2 and IGN with x and y swapped.
-fn nb_sampler_grids(p: vec2<i32>) -> vec4<u32> {
-    return vec4<u32>(nb_ign_bits(p), nb_r2_bits(p), nb_r2_bits(p.yx), nb_ign_bits(p.yx));
+// IGN of an inner fraction (nb_ign_bits after its inner product).
+fn nb_ign_of_inner(inner: vec2<u32>) -> u32 {
+    let whole = 52u * inner.y + nb_mulhi(52u, inner.x);
+    return whole + nb_mulhi(0xfba092b2u, inner.y);
+}
+
+// IGN's inner fraction at p plus frame·shift (sampler::ign_inner).
+fn nb_ign_inner(p: vec2<i32>, frame: u32, shift: vec2<u32>) -> vec2<u32> {
+    let inner = nb_add64(
+        nb_mul64(nb_wide(p.x), vec2<u32>(0x6a8f1506u, 0x112e285cu)),
+        nb_mul64(nb_wide(p.y), vec2<u32>(0x5a129b0du, 0x017e8b20u)),
+    );
+    return nb_add64(inner, nb_mul64(vec2<u32>(frame, 0u), shift));
+}
+
+// 5.588238 px per frame in x and y, and in x only, as shifts of IGN's inner fraction.
+const NB_IGN_SHIFT_XY = vec2<u32>(0x11235c12u, 0x685bb218u);
+const NB_IGN_SHIFT_X = vec2<u32>(0xf81ae4ebu, 0x6001f3a6u);
+
+// The four free per-pixel values in a frame as 32-bit fractions: IGN moved 5.588238 px per
+// frame, R2 + frame·(φ − 1), R2ᵀ + frame/ρ, IGNᵀ moved along one axis (sampler::grids).
+fn nb_sampler_grids(p: vec2<i32>, frame: u32) -> vec4<u32> {
+    return vec4<u32>(
+        nb_ign_of_inner(nb_ign_inner(p, frame, NB_IGN_SHIFT_XY)),
+        nb_r2_bits(p) + nb_golden(frame),
+        nb_r2_bits(p.yx) + nb_frac_mul(frame, NB_R2_A1),
+        nb_ign_of_inner(nb_ign_inner(p.yx, frame, NB_IGN_SHIFT_X)),
+    );
 }
 
 fn nb_to_unit4(f: vec4<u32>) -> vec4<f32> {
     return vec4<f32>(nb_to_unit(f.x), nb_to_unit(f.y), nb_to_unit(f.z), nb_to_unit(f.w));
 }
 
-// IGN, R2, R2ᵀ and IGNᵀ of a pixel, each advanced by frame·(φ − 1) (sampler::ign_r2::<4>; take
-// .xy for a pair).
+// IGN, R2, R2ᵀ and IGNᵀ of a pixel in a frame (sampler::ign_r2::<4>; take .xy for a pair).
 fn nb_ign_r2(p: vec2<i32>, frame: u32) -> vec4<f32> {
-    return nb_to_unit4(nb_sampler_grids(p) + vec4<u32>(nb_golden(frame)));
+    return nb_to_unit4(nb_sampler_grids(p, frame));
 }
 
 // 2^64·φ_d^-(k+1) of the R3 and R4 sequences (R1 is NB_GOLDEN, R2 NB_R2_A1 and NB_R2_A2).
@@ -318,17 +342,17 @@ fn nb_rd3(frame: u32, rotation: vec3<f32>) -> vec3<f32> {
     return nb_to_unit4(vec4<u32>(nb_rd3_bits(frame) + r, 0u)).xyz;
 }
 
-// R2 / R3 / R4 rotated by the free grids of nb_ign_r2 (sampler::rd_ign_r2).
+// R2 / R3 / R4 rotated by the free grids of nb_ign_r2 in frame 0 (sampler::rd_ign_r2).
 fn nb_rd2_ign_r2(p: vec2<i32>, frame: u32) -> vec2<f32> {
-    return nb_to_unit4(vec4<u32>(nb_rd2_bits(frame) + nb_sampler_grids(p).xy, 0u, 0u)).xy;
+    return nb_to_unit4(vec4<u32>(nb_rd2_bits(frame) + nb_sampler_grids(p, 0u).xy, 0u, 0u)).xy;
 }
 
 fn nb_rd3_ign_r2(p: vec2<i32>, frame: u32) -> vec3<f32> {
-    return nb_to_unit4(vec4<u32>(nb_rd3_bits(frame) + nb_sampler_grids(p).xyz, 0u)).xyz;
+    return nb_to_unit4(vec4<u32>(nb_rd3_bits(frame) + nb_sampler_grids(p, 0u).xyz, 0u)).xyz;
 }
 
 fn nb_rd4_ign_r2(p: vec2<i32>, frame: u32) -> vec4<f32> {
-    return nb_to_unit4(nb_rd4_bits(frame) + nb_sampler_grids(p));
+    return nb_to_unit4(nb_rd4_bits(frame) + nb_sampler_grids(p, 0u));
 }
 
 // The first four dimensions of the index-th Sobol point as 32-bit fractions, the direction

@@ -102,9 +102,11 @@ enum Command {
     /// The speed-against-error report: `fast` (FAST masks against every other mask after the
     /// filters they are made for), `stochastic` (noise functions), `cnj` (point sets, CNJ Table
     /// 2), or `all` (the default, these three); `bench` (bake time against size for every
-    /// generator, on one and two threads, beside its estimate: about 6 minutes on 2 cores).
+    /// generator, on one and two threads, beside its estimate: about 6 minutes on 2 cores);
+    /// `vector` (directions: our vector FAST masks against EA's and the free constructions
+    /// after box 5×5 and Gaussian σ 1 × EMA, cosine hemisphere and sphere).
     Report {
-        /// Which section: fast, stochastic, cnj, all or bench.
+        /// Which section: fast, stochastic, cnj, all, bench or vector.
         #[arg(default_value = "all")]
         section: String,
         /// Write the stochastic-noise rows as a JSON list (`{"noise", "variant", "ns_per_eval",
@@ -515,10 +517,25 @@ fn report(
 ) -> Result<(), String> {
     let mut log = |s: &str| println!("{s}");
     let mut doc = serde_json::Map::new();
-    if !matches!(section, "all" | "fast" | "stochastic" | "cnj" | "bench") {
+    if !matches!(
+        section,
+        "all" | "fast" | "stochastic" | "cnj" | "bench" | "vector"
+    ) {
         return Err(format!(
-            "unknown report section `{section}`: use fast, stochastic, cnj, all or bench"
+            "unknown report section `{section}`: use fast, stochastic, cnj, all, bench or vector"
         ));
+    }
+    if section == "vector" {
+        let r = noisebake_cli::report::vector::run(out, &mut log)?;
+        for line in noisebake_cli::report::vector::describe(&r) {
+            println!("{line}");
+        }
+        println!(
+            "  wrote {} and {}",
+            out.join("vector.json").display(),
+            out.join("vector.png").display()
+        );
+        return Ok(());
     }
     if section == "bench" {
         println!(

@@ -1,13 +1,13 @@
 //! The demo's stochastic transparency and RGB dithering rendered on a GPU through wgpu, headless,
 //! with the demo's baked STBN and FAST masks uploaded from the runtime's bytes and sampled with
-//! the WGSL library (`noisebake::shaders::WGSL`), next to the free hashes IGN and R2 computed in
-//! the shader.
+//! the WGSL library (`noisebake::shaders::WGSL`), next to the free constructions IGN and R2
+//! (`nb_ign_r2`, the demo's `ign` and `r2` rows) computed in the shader.
 //!
 //! `cargo run --release --example gpu` prints, per application and noise, the GPU time of one
 //! frame and the error of the 64-frame EMA after the demo's Gaussian blur against the demo's
 //! reference — measured by the demo's own code on the frames read back — beside the CPU
-//! render's error of the same noise (equal up to the GPU's `sin`/`cos` and, for IGN, the last
-//! bit of ξ). PNGs of the final EMA go to `target/noisebake-demo/`, beside the demo's.
+//! render's error of the same noise (equal up to the GPU's `sin`/`cos`; ξ is the same bits).
+//! PNGs of the final EMA go to `target/noisebake-demo/`, beside the demo's.
 //!
 //! Without a GPU it needs a software Vulkan driver (Debian: `apt-get install
 //! mesa-vulkan-drivers`); the timings are then the CPU's, through lavapipe.

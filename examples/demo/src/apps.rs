@@ -97,7 +97,7 @@ impl App for Dither {
         "dither"
     }
     fn caption(&self) -> &'static str {
-        "Dithering an RGB image to 1 bit per channel (STBN §5.2): three independent values per pixel through R2 offsets (get_k with k = 0, 1, 2)."
+        "Dithering an RGB image to 1 bit per channel (STBN §5.2): three independent values per pixel, from masks through R2 offsets (get_k with k = 0, 1, 2), from the free constructions each its own function of the pixel (sampler)."
     }
     fn channels(&self) -> usize {
         3

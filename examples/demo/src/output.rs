@@ -185,8 +185,9 @@ pub fn tied(a: &crate::Metrics, b: &crate::Metrics) -> bool {
 }
 
 /// Which noise leaves the least error in an application after EMA + blur, which others are
-/// tied with it (within twice the standard error of the difference), and whether a free hash
-/// (IGN, R2: one line of shader code, no texture) is as good: from this run's numbers.
+/// tied with it (within twice the standard error of the difference), and whether a free
+/// construction (IGN, R2, R_d, Sobol: a few lines of shader code, no texture) is as good: from
+/// this run's numbers.
 pub fn verdict(r: &AppResult) -> String {
     let best = r
         .runs
@@ -223,7 +224,7 @@ pub fn verdict(r: &AppResult) -> String {
     }
     if let Some(f) = free {
         if best.noise.is_free_hash() {
-            s += "; a free hash wins here: no texture needed";
+            s += "; a free construction wins here: no texture needed";
         } else if tied(f, best) {
             s += &format!("; {} ties it and needs no texture", f.noise.name());
         } else if f.denoised <= 1.05 * best.denoised {
@@ -234,7 +235,7 @@ pub fn verdict(r: &AppResult) -> String {
             );
         } else {
             s += &format!(
-                "; the best free hash, {}, leaves {:.0} % more",
+                "; the best free construction, {}, leaves {:.0} % more",
                 f.noise.name(),
                 100.0 * (f.denoised / best.denoised - 1.0)
             );

@@ -2,7 +2,8 @@
 // tests: the same scenes as `apps.rs`, number for number, with ξ from the same sources
 // (`noises.rs`). Needs noisebake's WGSL library (`noisebake::shaders::WGSL`) before it.
 //
-// Bindings: params (size, noise: 0 STBN / 1 FAST / 2 IGN / 3 R2, app: 0 transparency /
+// Bindings: params (size, noise: 0 STBN / 1 FAST / 2 IGN / 3 R2 (the free pairs of
+// sampler::ign_r2), app: 0 transparency /
 // 1 dither), the frames (x fastest, then y, then frame; channels interleaved), and the two
 // masks. One invocation per pixel and frame (z = frame).
 struct Params { size: vec2<u32>, noise: u32, app: u32 }
@@ -13,12 +14,13 @@ struct Params { size: vec2<u32>, noise: u32, app: u32 }
 
 // The k-th uniform number of pixel p in frame f, as noisebake_demo::noises::Noise::xi.
 fn xi(p: vec2<i32>, f: u32, k: u32) -> f32 {
-    let shifted = p + vec2<i32>(17 * i32(k), 29 * i32(k));
+    let g = nb_ign_r2(p, f);
+    let k3 = min(k, 2u);
     switch params.noise {
         case 0u: { return nb_mask_unit(stbn, vec3<i32>(p, i32(f)), k); }
         case 1u: { return nb_mask_unit(fast, vec3<i32>(p, i32(f)), k); }
-        case 2u: { return nb_ign_frame(shifted, f); }
-        default: { return nb_r2_frame(shifted, f); }
+        case 2u: { return g[k3]; }
+        default: { return vec3<f32>(g.y, g.z, g.x)[k3]; }
     }
 }
 

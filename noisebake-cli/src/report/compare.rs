@@ -127,7 +127,7 @@ pub fn params() -> fast::FastParams {
 }
 
 /// The spec of a baked row: `kind` with extra TOML keys, u8.
-fn spec(name: &str, kind: &str, dims: [usize; 3], extra: &str) -> TextureSpec {
+pub(crate) fn spec(name: &str, kind: &str, dims: [usize; 3], extra: &str) -> TextureSpec {
     let text = format!(
         "[[texture]]\nname = \"{name}\"\nkind = \"{kind}\"\ndims = [{}, {}, {}]\nseed = 1\nformat = \"u8\"\n{extra}",
         dims[0], dims[1], dims[2]
@@ -152,7 +152,10 @@ pub fn fast_spec(dims: [usize; 3], beta: f64) -> TextureSpec {
 }
 
 /// Bakes `s` through the workspace cache; `(values, seconds, cached)`.
-fn bake(s: &TextureSpec, log: &mut dyn FnMut(&str)) -> Result<(Vec<f64>, f64, bool), String> {
+pub(crate) fn bake(
+    s: &TextureSpec,
+    log: &mut dyn FnMut(&str),
+) -> Result<(Vec<f64>, f64, bool), String> {
     let mut cache = Locator {
         manifest_dir: Some(Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()),
         ..Locator::default()

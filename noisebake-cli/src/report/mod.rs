@@ -5,3 +5,4 @@ pub mod bench;
 pub mod compare;
 pub mod fast;
 pub mod stochastic;
+pub mod vector;

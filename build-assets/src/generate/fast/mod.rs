@@ -84,6 +84,17 @@ macro_rules! with_metric {
 pub fn initial_samples(params: &FastParams, dims: &[usize], seed: u64) -> Vec<f64> {
     let [w, h, t] = dims3(dims);
     let mut out = Vec::with_capacity(w * h * t * params.sample_space.channels());
+    if matches!(params.start, Start::IgnR2 | Start::RdIgnR2) {
+        for slice in 0..t {
+            for y in 0..h {
+                for x in 0..w {
+                    let pair = free_pair(params.start, x as i32, y as i32, slice as u32);
+                    out.extend(warp_pair(params.sample_space, pair));
+                }
+            }
+        }
+        return out;
+    }
     for slice in 0..t {
         let mut rng = SplitMix64::new(derive_seed(seed, slice as u64));
         let mut v =
@@ -102,6 +113,30 @@ pub fn initial_samples(params: &FastParams, dims: &[usize], seed: u64) -> Vec<f6
         out.extend(v);
     }
     out
+}
+
+/// The free pair of a start at pixel `(x, y)` in `frame` (`noise_runtime::sampler`).
+fn free_pair(start: Start, x: i32, y: i32, frame: u32) -> [f32; 2] {
+    use noise_runtime::sampler;
+    match start {
+        Start::RdIgnR2 => sampler::rd_ign_r2::<2>(x, y, frame),
+        _ => sampler::ign_r2::<2>(x, y, frame),
+    }
+}
+
+/// A pair through the runtime's warp for `space` (what a game applies to the free pair), in
+/// `f64` and renormalised so the loss sees unit vectors; a `vec2` is the pair itself.
+fn warp_pair(space: SampleSpace, [u, v]: [f32; 2]) -> Vec<f64> {
+    use noise_runtime::warp;
+    let d = match space {
+        SampleSpace::Sphere => warp::sphere_uniform(u, v),
+        SampleSpace::Hemisphere => warp::hemisphere_uniform(u, v),
+        SampleSpace::CosineHemisphere => warp::cosine_hemisphere(u, v),
+        _ => return vec![u as f64, v as f64],
+    };
+    let d = d.map(|c| c as f64);
+    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    d.iter().map(|c| c / len).collect()
 }
 
 /// Interleaved gradient noise over one `w × h` frame, x fastest: `fract(52.9829189 ·
@@ -368,6 +403,58 @@ mod tests {
                 out.loss()
             );
             assert!(exact < init, "{space:?}: {exact} !< {init}");
+        }
+    }
+
+    /// A free-pair start is that free construction, texel for texel, and the swaps only lower
+    /// its loss.
+    #[test]
+    fn free_pair_starts_are_the_free_construction_and_only_improve() {
+        use noise_runtime::{sampler, warp};
+        let dims = vec![24usize, 20, 4];
+        for (start, space) in [
+            (Start::IgnR2, SampleSpace::CosineHemisphere),
+            (Start::RdIgnR2, SampleSpace::Sphere),
+            (Start::IgnR2, SampleSpace::Vec2),
+        ] {
+            let mut p = params(space, Combine::Product);
+            p.start = start;
+            let init = initial_samples(&p, &dims, 9);
+            let c = space.channels();
+            for &(x, y, f) in &[(0usize, 0usize, 0usize), (5, 7, 1), (23, 19, 3)] {
+                let i = ((f * 20 + y) * 24 + x) * c;
+                let [u, v] = match start {
+                    Start::IgnR2 => sampler::ign_r2::<2>(x as i32, y as i32, f as u32),
+                    _ => sampler::rd_ign_r2::<2>(x as i32, y as i32, f as u32),
+                };
+                let want: Vec<f64> = match space {
+                    SampleSpace::CosineHemisphere => {
+                        warp::cosine_hemisphere(u, v).map(|a| a as f64).to_vec()
+                    }
+                    SampleSpace::Sphere => warp::sphere_uniform(u, v).map(|a| a as f64).to_vec(),
+                    _ => vec![u as f64, v as f64],
+                };
+                for k in 0..c {
+                    assert!(
+                        (init[i + k] - want[k]).abs() < 1e-6,
+                        "{start:?} {space:?} ({x}, {y}, {f})"
+                    );
+                }
+            }
+            let out = generate(&p, &dims, 9, &mut |_, _| {});
+            let l0 = loss(&p, &dims, &init);
+            assert!((out.initial_loss - l0).abs() < 1e-9 * l0.abs());
+            let l = loss(&p, &dims, &out.samples);
+            assert!(l < l0, "{start:?} {space:?}: {l} !< {l0}");
+            // Swaps keep each slice's multiset: sorted values per slice are unchanged.
+            let slice = 24 * 20 * c;
+            for f in 0..4 {
+                let mut a = init[f * slice..(f + 1) * slice].to_vec();
+                let mut b = out.samples[f * slice..(f + 1) * slice].to_vec();
+                a.sort_by(f64::total_cmp);
+                b.sort_by(f64::total_cmp);
+                assert_eq!(a, b);
+            }
         }
     }
 }
