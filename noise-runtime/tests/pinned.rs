@@ -354,3 +354,51 @@ const FINGERPRINTS: [(&str, u64); 22] = [
     ("smooth voronoi estimate", 0xdb1fa98b5702159f),
     ("worley f1", 0x85a29ab3030db7ee),
 ];
+
+#[test]
+fn samplers_are_pinned() {
+    use noise_runtime::sampler;
+    let at = [
+        (0, 0, 0u32),
+        (5, -3, 7),
+        (-1000, 250, 99),
+        (i32::MAX, i32::MIN, u32::MAX),
+    ];
+    check(
+        "ign_r2",
+        bits(
+            at.iter()
+                .flat_map(|&(x, y, f)| sampler::ign_r2::<4>(x, y, f)),
+        ),
+        &[
+            0x00000000, 0x00000000, 0x00000000, 0x00000000, 0x3dba9318, 0x3ec83ef6, 0x3f5e63ea,
+            0x3b95f100, 0x3ecfb39e, 0x3f448caa, 0x3f1cacfb, 0x3f2045cc, 0x3da77c08, 0x3f3d5734,
+            0x3d900cf8, 0x3eed4c06,
+        ],
+    );
+    check(
+        "rd_ign_r2",
+        bits(at.iter().flat_map(|&(x, y, f)| {
+            let a = sampler::rd_ign_r2::<2>(x, y, f);
+            let b = sampler::rd_ign_r2::<3>(x, y, f);
+            a.into_iter().chain(b)
+        })),
+        &[
+            0x00000000, 0x00000000, 0x00000000, 0x00000000, 0x00000000, 0x3e0a23f0, 0x3d5c2860,
+            0x3f15c05f, 0x3f431dc0, 0x3edd6cf0, 0x3e56847c, 0x3f7f20de, 0x3f131e35, 0x3c80cea0,
+            0x3e995482, 0x3ec704ea, 0x3d900cf8, 0x3e07e63c, 0x3e302968, 0x3ee63ef0,
+        ],
+    );
+    check(
+        "sobol_owen",
+        bits(
+            at.iter()
+                .flat_map(|&(x, y, f)| sampler::sobol_owen::<4>(x, y, f, 3)),
+        ),
+        &[
+            0x3e899302, 0x3eca7c46, 0x3f7a7954, 0x3f449ffe, 0x3f200c5e, 0x3f27b6d0, 0x3ec317c4,
+            0x3eddb1a6, 0x3f25cc85, 0x3e0aac60, 0x3e087734, 0x3d8e2e20, 0x3f12da61, 0x3eb4e930,
+            0x3f4f2f97, 0x3c8d0da0,
+        ],
+    );
+}
