@@ -36,17 +36,35 @@ pub fn workspace_root(dir: &Path) -> Option<PathBuf> {
 /// lies inside another directory Cargo tagged with `CACHEDIR.TAG`, the outermost such one. So
 /// builds nested in the workspace target (trybuild sets `CARGO_TARGET_DIR` to
 /// `target/tests/trybuild`) share the workspace's cache instead of baking everything again.
+///
+/// The result is absolute. A relative `CARGO_TARGET_DIR` is relative to the directory Cargo was
+/// run in, which a build script (run in its package's directory) or a proc macro cannot know:
+/// then the target directory `OUT_DIR` lies in (always absolute) is used, and without one the
+/// variable is taken relative to the current directory. A relative path would otherwise reach
+/// `include_bytes!`, which resolves it against the source file instead.
 pub fn target_dir(out_dir: Option<&Path>) -> Option<PathBuf> {
-    let base = match std::env::var_os("CARGO_TARGET_DIR") {
-        Some(t) => PathBuf::from(t),
-        None => profile_parent(out_dir?)?,
-    };
+    let var = std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from);
+    let base = base_target_dir(var, out_dir, &std::env::current_dir().ok()?)?;
     let outer = base
         .ancestors()
         .filter(|a| a.join("CACHEDIR.TAG").is_file())
         .last()
         .map(Path::to_path_buf);
     Some(outer.unwrap_or(base))
+}
+
+/// The target directory before the `CACHEDIR.TAG` walk: `var` (`CARGO_TARGET_DIR`) if
+/// absolute; if relative, the one `out_dir` lies in, else `var` under `cwd`; without `var`, the
+/// one `out_dir` lies in.
+fn base_target_dir(var: Option<PathBuf>, out_dir: Option<&Path>, cwd: &Path) -> Option<PathBuf> {
+    match var {
+        Some(t) if t.is_absolute() => Some(t),
+        Some(t) => match out_dir.and_then(profile_parent) {
+            Some(p) if p.is_absolute() => Some(p),
+            _ => Some(cwd.join(t)),
+        },
+        None => profile_parent(out_dir?),
+    }
 }
 
 /// The directory that holds the profile dirs above `out` (`…/<profile>/build/<pkg>/out`).
@@ -178,5 +196,44 @@ impl Locator {
             offline: env_on("NOISEBAKE_OFFLINE"),
             warnings: Vec::new(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A relative `CARGO_TARGET_DIR` never reaches `include_bytes!` relative: it is resolved
+    /// through `OUT_DIR` (absolute, inside the real target directory) or the current directory.
+    #[test]
+    fn relative_target_dirs_become_absolute() {
+        // A target directory as Cargo leaves it: tagged, with a build script's OUT_DIR inside.
+        let root = std::env::temp_dir().join(format!("nb-target-{}", std::process::id()));
+        let target = root.join("target/package-verify");
+        let out = target.join("debug/build/demo-1a2b/out");
+        std::fs::create_dir_all(&out).unwrap();
+        std::fs::write(
+            target.join("CACHEDIR.TAG"),
+            "Signature: 8a477f597d28d172789f06886806bc55",
+        )
+        .unwrap();
+        let cwd = root.join("examples/demo");
+        let rel = Some(PathBuf::from("target/package-verify"));
+        assert_eq!(
+            base_target_dir(rel.clone(), Some(&out), &cwd),
+            Some(target.clone())
+        );
+        assert_eq!(
+            base_target_dir(rel, None, &cwd),
+            Some(cwd.join("target/package-verify"))
+        );
+        let abs = Some(PathBuf::from("/elsewhere/t"));
+        assert_eq!(
+            base_target_dir(abs, Some(&out), &cwd),
+            Some(PathBuf::from("/elsewhere/t"))
+        );
+        assert_eq!(base_target_dir(None, Some(&out), &cwd), Some(target));
+        assert_eq!(base_target_dir(None, None, &cwd), None);
+        std::fs::remove_dir_all(&root).unwrap();
     }
 }
