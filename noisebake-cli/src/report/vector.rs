@@ -14,7 +14,9 @@
 //! **The rows.** Our FAST vector masks made for each filter (3D, and 2D read at an R2 offset
 //! per frame), EA's published 2D vector textures (vendored in `testdata/ea-fast-bsd3/`) read the
 //! same way, two values of our STBN, and the free constructions of
-//! [`noise_runtime::sampler`] through the runtime's warp, PCG and white noise.
+//! [`noise_runtime::sampler`] through the runtime's warp, PCG and white noise. Every row is
+//! measured over the same 32 frames looped, the free constructions too (in a game they would
+//! not loop, which can only help them after an EMA).
 
 use super::compare::bake;
 use crate::analysis::filtered::{Denoiser, filtered_rmse_integrands};
@@ -557,6 +559,43 @@ pub fn verdict(a: &Row, b: &Row, f: usize) -> String {
     }
 }
 
+/// A row's name for the plot's legend: the parenthesised details cut to their key words.
+fn short(mask: &str) -> String {
+    let mut s = mask.to_string();
+    for (from, to) in [
+        ("(ours, for ", "("),
+        (", random start", ", random"),
+        (", from sampler::", ", from "),
+        ("(EA, published, ", "(EA "),
+        (") + R2 offset per frame", ") + offset"),
+        (" (sampler::rd)", ""),
+        (
+            "R2 sequence rotated by a 2D blue-noise mask",
+            "R2 seq. + 2D blue rotation",
+        ),
+        (
+            "R2 sequence rotated by IGN x R2",
+            "R2 seq. + IGN x R2 rotation",
+        ),
+        (
+            ", both golden-ratio animated (ldg::ign_frame, ldg::r2_frame)",
+            ", both golden",
+        ),
+        (" (sampler::ign_r2)", ""),
+        (" (sampler::rd_ign_r2)", ""),
+        (", Owen-scrambled per pixel (sampler::sobol_owen)", "-Owen"),
+        (" of pixel and frame", ""),
+        (" values 0 and 1", ""),
+        ("white noise (baked)", "white"),
+        ("(ours)", ""),
+        ("box 5x5", "box5"),
+        ("gauss σ 1", "gauss1"),
+    ] {
+        s = s.replace(from, to);
+    }
+    s.trim().to_string()
+}
+
 /// One line per source over the four cases (space × filter): its RMSE over the best free
 /// construction's in that case (log scale; below 1 beats every free construction).
 pub fn plot(r: &Report, path: &Path) -> Result<(), String> {
@@ -584,7 +623,7 @@ pub fn plot(r: &Report, path: &Path) -> Result<(), String> {
                 }
             }
             Series {
-                label: row.mask.clone(),
+                label: short(&row.mask),
                 color: PALETTE[i % PALETTE.len()],
                 points,
             }
