@@ -8,7 +8,7 @@
 //! construction here gives each dimension its own per-pixel value instead:
 //!
 //! - [`ign_r2`]: interleaved gradient noise for the first value, the R2 grid for the second
-//!   (then R2 and IGN with x and y swapped), each animated by the golden ratio — the pair a
+//!   (then R2 mirrored and IGN with x and y swapped), each animated over frames — the pair a
 //!   shader writes in two lines;
 //! - [`rd`] and [`rd_ign_r2`]: the frame-th point of the R_d sequence (Roberts 2018, the
 //!   generalised golden ratio), Cranley–Patterson rotated per pixel — by the free grids of
@@ -73,27 +73,36 @@ fn ign_bits(inner: u64) -> u32 {
     whole.wrapping_add(((FRACTION * hi as u64) >> 32) as u32)
 }
 
-/// The four free per-pixel values in `frame`, as 32-bit fractions: IGN, the R2 grid, R2 with
-/// x and y swapped, IGN with x and y swapped. Each is a different function of `(x, y)`, and
-/// each moves differently over frames (IGN by 5.588238 pixels in x and y, R2 by φ − 1, R2ᵀ by
-/// 1/ρ, IGNᵀ by 5.588238 pixels along its first axis), so no value is a function of another
-/// in one frame or in one pixel's time series.
+/// The four free per-pixel values in `frame`, as 32-bit fractions: IGN, the R2 grid, R2
+/// mirrored (`frac(x/ρ − y/ρ²)`), IGN with x and y swapped. Each is a different function of
+/// `(x, y)`, and each moves differently over frames (IGN by 5.588238 pixels in x and y, R2 by
+/// φ − 1, mirrored R2 by 1/ρ, IGNᵀ by 5.588238 pixels along its first axis), so no value is a
+/// function of another in one frame or in one pixel's time series.
+///
+/// Mirrored, not transposed: R2 and R2 with x and y swapped map neighbouring pixels to the
+/// columns (1/ρ, 1/ρ²) and (1/ρ², 1/ρ) of a matrix of determinant 0.245, nearly parallel, and
+/// that pair measured no better than white noise for directions (`report vector`'s measure:
+/// 0.0190 against white's 0.0185 after box 5×5 × EMA); mirrored, the columns (1/ρ, 1/ρ) and
+/// (1/ρ², −1/ρ²) are orthogonal (determinant −0.860) and the pair measured 0.0113.
 #[inline(always)]
 fn grids(x: i32, y: i32, frame: u32) -> [u32; MAX_DIMS] {
     let step = |alpha: u64| (frac_mul(frame as u64, alpha) >> 32) as u32;
     [
         ign_bits(ign_inner(x, y, frame, IGN_SHIFT_XY)),
         linear_bits(x, y, R2_A1, R2_A2).wrapping_add(step(GOLDEN)),
-        linear_bits(y, x, R2_A1, R2_A2).wrapping_add(step(R2_A1)),
+        linear_bits(x, y, R2_A1, R2_A2_NEG).wrapping_add(step(R2_A1)),
         ign_bits(ign_inner(y, x, frame, IGN_SHIFT_X)),
     ]
 }
 
+/// `2^64 − R2_A2`: `−1/ρ²` as a 64-bit fraction, the mirrored R2 grid's second weight.
+const R2_A2_NEG: u64 = 0x6e1e_f25a_3861_84e4;
+
 /// `D` values of pixel `(x, y)` in `frame` from interleaved gradient noise and the R2 grid:
 /// value 0 is IGN moved by 5.588238 pixels per frame (Jimenez 2014, as games animate it),
-/// value 1 the R2 grid advanced by `frame · (φ − 1)` mod 1 (exactly `ldg::r2_frame`); values 2
-/// and 3 the R2 grid and IGN with x and y swapped, moving at other rates (R2ᵀ by `1/ρ` per
-/// frame, IGNᵀ by 5.588238 pixels along one axis). `D` is 1 to 4.
+/// value 1 the R2 grid advanced by `frame · (φ − 1)` mod 1 (exactly `ldg::r2_frame`); value 2
+/// the mirrored R2 grid `frac(x/ρ − y/ρ²)` advanced by `1/ρ` per frame, value 3 IGN with x and
+/// y swapped, moved 5.588238 pixels along one axis per frame. `D` is 1 to 4.
 ///
 /// Measured by `noisebake report vector`, the IGN shift leaves less error after a box filter
 /// × EMA than IGN advanced by the golden ratio (`ldg::ign_frame`), whose pairs would walk a
@@ -148,8 +157,8 @@ fn fraction(v: f32) -> u32 {
     (v.clamp(0.0, 1.0) as f64 * 4_294_967_296.0) as u32
 }
 
-/// [`rd`] rotated per pixel by the free grids of [`ign_r2`] at frame 0 (IGN, R2, and their
-/// transposes): no texture, and each pixel's values over frames are the R_d sequence.
+/// [`rd`] rotated per pixel by the free grids of [`ign_r2`] at frame 0 (IGN, R2, mirrored R2,
+/// IGNᵀ): no texture, and each pixel's values over frames are the R_d sequence.
 #[must_use]
 #[inline]
 pub fn rd_ign_r2<const D: usize>(x: i32, y: i32, frame: u32) -> [f32; D] {
@@ -337,7 +346,7 @@ mod tests {
     fn no_value_is_a_function_of_another_in_space_or_time() {
         let check = |name: &str, r: [Vec<(usize, usize, f64)>; 2], time_too: bool| {
             for (i, j, left) in &r[0] {
-                assert!(*left > 0.8, "{name} space ({i}, {j}): {left}");
+                assert!(*left > 0.5, "{name} space ({i}, {j}): {left}");
             }
             if time_too {
                 for (i, j, left) in &r[1] {
@@ -345,8 +354,10 @@ mod tests {
                 }
             }
         };
-        // Independent values keep ~1 of their spread, a function of the first keeps ~0; R_d's
-        // higher projections keep less than 1 in time (0.75 for dims 2 and 0 of R4).
+        // Independent values keep ~1 of their spread, a function of the first keeps ~0 (the
+        // shifted grids above: < 0.01 for R2). Two grids keep less than 1 where their linear
+        // structures meet (0.6 for mirrored R2 given IGN in one frame), and R_d's higher
+        // projections in time (0.75 for dims 2 and 0 of R4): related, never functions.
         check("ign_r2", pairs_of(ign_r2::<4>), true);
         check("rd_ign_r2<2>", pairs_of(rd_ign_r2::<2>), true);
         check("rd_ign_r2<3>", pairs_of(rd_ign_r2::<3>), true);
@@ -378,12 +389,11 @@ mod tests {
         for (x, y, f) in [(0, 0, 0), (3, -7, 5), (1000, 20, 77), (-40, 9, 1000)] {
             let [a, b, c, d] = ign_r2::<4>(x, y, f);
             assert_eq!(b, ldg::r2_frame(x, y, f));
-            let r2t = (wide(y)
-                .wrapping_mul(R2_A1)
-                .wrapping_add(wide(x).wrapping_mul(R2_A2))
-                >> 32) as u32;
-            let r2t = to_unit(r2t.wrapping_add((frac_mul(f as u64, R2_A1) >> 32) as u32));
-            assert_eq!(c, r2t);
+            // frac(x/ρ − y/ρ² + f/ρ) in f64, good to ~1e-12 for these coordinates.
+            let r2m = (x as f64 * 0.754_877_666_246_692_7 - y as f64 * 0.569_840_290_998_053_3
+                + f as f64 * 0.754_877_666_246_692_7)
+                .rem_euclid(1.0) as f32;
+            assert!(close(c, r2m, 1e-6), "({x}, {y}, {f}): {c} vs {r2m}");
             assert!(close(a, shifted(x, y, f), 1e-5), "({x}, {y}, {f}): {a}");
             let o = 5.588_238 * f as f64;
             let fract = |v: f64| v - v.floor();

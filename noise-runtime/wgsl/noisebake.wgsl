@@ -282,13 +282,18 @@ fn nb_ign_inner(p: vec2<i32>, frame: u32, shift: vec2<u32>) -> vec2<u32> {
 const NB_IGN_SHIFT_XY = vec2<u32>(0x11235c12u, 0x685bb218u);
 const NB_IGN_SHIFT_X = vec2<u32>(0xf81ae4ebu, 0x6001f3a6u);
 
+// −1/ρ² as a 64-bit fraction (2^64 − NB_R2_A2): the mirrored R2 grid's second weight.
+const NB_R2_A2_NEG = vec2<u32>(0x386184e4u, 0x6e1ef25au);
+
 // The four free per-pixel values in a frame as 32-bit fractions: IGN moved 5.588238 px per
-// frame, R2 + frame·(φ − 1), R2ᵀ + frame/ρ, IGNᵀ moved along one axis (sampler::grids).
+// frame, R2 + frame·(φ − 1), mirrored R2 frac(x/ρ − y/ρ²) + frame/ρ, IGNᵀ moved along one axis
+// (sampler::grids).
 fn nb_sampler_grids(p: vec2<i32>, frame: u32) -> vec4<u32> {
     return vec4<u32>(
         nb_ign_of_inner(nb_ign_inner(p, frame, NB_IGN_SHIFT_XY)),
         nb_r2_bits(p) + nb_golden(frame),
-        nb_r2_bits(p.yx) + nb_frac_mul(frame, NB_R2_A1),
+        nb_add64(nb_mul64(nb_wide(p.x), NB_R2_A1), nb_mul64(nb_wide(p.y), NB_R2_A2_NEG)).y
+            + nb_frac_mul(frame, NB_R2_A1),
         nb_ign_of_inner(nb_ign_inner(p.yx, frame, NB_IGN_SHIFT_X)),
     );
 }
@@ -297,7 +302,7 @@ fn nb_to_unit4(f: vec4<u32>) -> vec4<f32> {
     return vec4<f32>(nb_to_unit(f.x), nb_to_unit(f.y), nb_to_unit(f.z), nb_to_unit(f.w));
 }
 
-// IGN, R2, R2ᵀ and IGNᵀ of a pixel in a frame (sampler::ign_r2::<4>; take .xy for a pair).
+// IGN, R2, mirrored R2 and IGNᵀ of a pixel in a frame (sampler::ign_r2::<4>; .xy for a pair).
 fn nb_ign_r2(p: vec2<i32>, frame: u32) -> vec4<f32> {
     return nb_to_unit4(nb_sampler_grids(p, frame));
 }

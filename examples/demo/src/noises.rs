@@ -13,11 +13,11 @@ pub enum Noise {
     /// Independent uniform numbers (baked white noise).
     White,
     /// Interleaved gradient noise moved 5.588238 px per frame for the first value, then the
-    /// R2 grid and their transposes (`sampler::ign_r2`): a fair free construction, each value
-    /// its own function of the pixel.
+    /// R2 grid and mirrored R2 (`sampler::ign_r2`): a fair free construction, each value its
+    /// own function of the pixel.
     Ign,
     /// The R2 grid, golden-ratio animated, for the first value, then the other grids of
-    /// `sampler::ign_r2` (R2ᵀ, IGN, IGNᵀ).
+    /// `sampler::ign_r2` (mirrored R2, then IGN).
     R2,
     /// The R_d sequence over frames, rotated per pixel by IGN and R2 (`sampler::rd_ign_r2`).
     Rd,
