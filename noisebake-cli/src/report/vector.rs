@@ -203,15 +203,26 @@ fn unit_from_unorm(c: [f64; 3]) -> [f32; 3] {
     v.map(|x| x / len)
 }
 
+/// The index in a `w × h` slice of pixel `(x, y)` (non-negative) moved by the `k`-th R2 point
+/// scaled to the slice, as the runtime's `get_k` reads a mask.
+fn offset_index(x: i32, y: i32, k: u32, [w, h]: [usize; 2]) -> usize {
+    let (ox, oy) = r2_point(k);
+    let xi = (x as usize + scale(ox, w as u32) as usize) % w;
+    let yi = (y as usize + scale(oy, h as u32) as usize) % h;
+    yi * w + xi
+}
+
 /// A 2D `w × h` mask of directions read at the R2 offset of each frame, as the runtime's
 /// `Mask2::get_k(x, y, frame)` reads it.
-fn offset_per_frame(mask: &[[f32; 3]], [w, h]: [usize; 2]) -> Vec<[f32; 3]> {
-    free(|x, y, f| {
-        let (ox, oy) = r2_point(f);
-        let xi = (x as usize + scale(ox, w as u32) as usize) % w;
-        let yi = (y as usize + scale(oy, h as u32) as usize) % h;
-        mask[yi * w + xi]
-    })
+fn offset_per_frame(mask: &[[f32; 3]], wh: [usize; 2]) -> Vec<[f32; 3]> {
+    free(|x, y, f| mask[offset_index(x, y, f, wh)])
+}
+
+/// Unit vectors from unorm channel values, three per texel.
+fn unit_vectors(v: &[f64]) -> Vec<[f32; 3]> {
+    v.chunks_exact(3)
+        .map(|c| unit_from_unorm([c[0], c[1], c[2]]))
+        .collect()
 }
 
 /// The spec of a FAST vector mask for `space` and `filter` × plain EMA at `dims`.
@@ -297,10 +308,7 @@ pub fn table(space: Space, log: &mut dyn FnMut(&str)) -> Result<Table, String> {
             (", from sampler::rd_ign_r2", "start = \"rd_ign_r2\""),
         ] {
             let (v, secs, cached) = bake(&fast_spec(space, &f, &DIMS, extra), log)?;
-            let dirs: Vec<[f32; 3]> = v
-                .chunks_exact(3)
-                .map(|c| unit_from_unorm([c[0], c[1], c[2]]))
-                .collect();
+            let dirs = unit_vectors(&v);
             push(
                 &mut rows,
                 log,
@@ -313,10 +321,7 @@ pub fn table(space: Space, log: &mut dyn FnMut(&str)) -> Result<Table, String> {
             );
         }
         let (v, secs, cached) = bake(&fast_spec(space, &f, &[w, h], ""), log)?;
-        let mask: Vec<[f32; 3]> = v
-            .chunks_exact(3)
-            .map(|c| unit_from_unorm([c[0], c[1], c[2]]))
-            .collect();
+        let mask = unit_vectors(&v);
         push(
             &mut rows,
             log,
@@ -359,10 +364,7 @@ pub fn table(space: Space, log: &mut dyn FnMut(&str)) -> Result<Table, String> {
     ] {
         let (v, secs, cached) = bake(&scalar(kind), log)?;
         let at = |x: i32, y: i32, f: u32, k: u32| {
-            let (ox, oy) = r2_point(k);
-            let xi = (x as usize + scale(ox, w as u32) as usize) % w;
-            let yi = (y as usize + scale(oy, h as u32) as usize) % h;
-            v[(f as usize * h + yi) * w + xi] as f32
+            v[f as usize * w * h + offset_index(x, y, k, [w, h])] as f32
         };
         let dirs = free(|x, y, f| space.warp(at(x, y, f, 0), at(x, y, f, 1)));
         push(
@@ -386,12 +388,7 @@ pub fn table(space: Space, log: &mut dyn FnMut(&str)) -> Result<Table, String> {
             .remove(0)
     };
     let (bv, bsecs, bcached) = bake(&blue2d, log)?;
-    let blue_at = |x: i32, y: i32, k: u32| {
-        let (ox, oy) = r2_point(k);
-        let xi = (x as usize + scale(ox, w as u32) as usize) % w;
-        let yi = (y as usize + scale(oy, h as u32) as usize) % h;
-        bv[yi * w + xi] as f32
-    };
+    let blue_at = |x: i32, y: i32, k: u32| bv[offset_index(x, y, k, [w, h])] as f32;
     push(
         &mut rows,
         log,
