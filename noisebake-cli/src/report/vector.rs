@@ -18,7 +18,7 @@
 //! measured over the same 32 frames looped, the free constructions too (in a game they would
 //! not loop, which can only help them after an EMA).
 
-use super::compare::bake;
+use super::compare::{bake, spec};
 use crate::analysis::filtered::{Denoiser, filtered_rmse_integrands};
 use build_assets::generate::fast::Filter;
 use build_assets::spec::TextureSpec;
@@ -349,20 +349,11 @@ pub fn table(space: Space, log: &mut dyn FnMut(&str)) -> Result<Table, String> {
             )),
         }
     }
-    let scalar = |kind: &str| -> TextureSpec {
-        let text = format!(
-            "[[texture]]\nname = \"S\"\nkind = \"{kind}\"\ndims = [{w}, {h}, {t}]\nseed = 1\nformat = \"u8\"\n"
-        );
-        build_assets::spec::parse_toml(&text)
-            .expect("valid")
-            .textures
-            .remove(0)
-    };
     for (label, kind) in [
         ("STBN (ours) values 0 and 1", "stbn"),
         ("white noise (baked) values 0 and 1", "white"),
     ] {
-        let (v, secs, cached) = bake(&scalar(kind), log)?;
+        let (v, secs, cached) = bake(&spec("S", kind, &DIMS, ""), log)?;
         let at = |x: i32, y: i32, f: u32, k: u32| {
             v[f as usize * w * h + offset_index(x, y, k, [w, h])] as f32
         };
@@ -378,16 +369,7 @@ pub fn table(space: Space, log: &mut dyn FnMut(&str)) -> Result<Table, String> {
             &dirs,
         );
     }
-    let blue2d = {
-        let text = format!(
-            "[[texture]]\nname = \"B\"\nkind = \"blue2d\"\ndims = [{w}, {h}]\nseed = 1\nformat = \"u8\"\n"
-        );
-        build_assets::spec::parse_toml(&text)
-            .expect("valid")
-            .textures
-            .remove(0)
-    };
-    let (bv, bsecs, bcached) = bake(&blue2d, log)?;
+    let (bv, bsecs, bcached) = bake(&spec("B", "blue2d", &[w, h], ""), log)?;
     let blue_at = |x: i32, y: i32, k: u32| bv[offset_index(x, y, k, [w, h])] as f32;
     push(
         &mut rows,
