@@ -38,9 +38,10 @@
 //! runs to whole SSE2 vectors, or blocks of 16 or 64 texels, measured slower.)
 //!
 //! Profile (`perf record -e cpu-clock`, one thread, blue2d 2048² and STBN 128×128×64; everything
-//! is inlined into [`rank`], so build with line tables and sort by `srcline`): the time splits
-//! into three parts of similar size, the splat's adds (about 30 %), the block minima's energy
-//! reads (about 20 %) and the tree walk of `BlockQueue::set` (about 20 %). A `take` refreshes
+//! is inlined into [`rank`], so build with line tables and sort by `srcline`): at 2048² the time
+//! splits into three parts of similar size, the splat's adds (about 30 %), the block minima's
+//! energy reads (about 20 %) and the tree walk of `BlockQueue::set` (about 20 %); STBN spends
+//! as much again, plus about 8 % on its temporal adds (one line per slice). A `take` refreshes
 //! about four blocks per step (4.05 for blue2d, 4.5 for STBN), and the refreshed top block's
 //! key rises, so each refresh walks the tree to its root. The splat's run adds compile to
 //! scalar read-modify-writes whose cost is the cache miss at a random place of the field.
