@@ -40,8 +40,8 @@
 //! Profile (`perf record -e cpu-clock`, one thread, blue2d 2048² and STBN 128×128×64; everything
 //! is inlined into [`rank`], so build with line tables and sort by `srcline`): at 2048² the time
 //! splits into three parts of similar size, the splat's adds (about 30 %), the block minima's
-//! energy reads (about 20 %) and the tree walk of `BlockQueue::set` (about 20 %); STBN spends
-//! as much again, plus about 8 % on its temporal adds (one line per slice). A `take` refreshes
+//! energy reads (about 20 %) and the tree walk of `BlockQueue::set` (about 20 %); STBN splits
+//! about the same way, plus about 8 % on its temporal adds (one line per slice). A `take` refreshes
 //! about four blocks per step (4.05 for blue2d, 4.5 for STBN), and the refreshed top block's
 //! key rises, so each refresh walks the tree to its root. The splat's run adds compile to
 //! scalar read-modify-writes whose cost is the cache miss at a random place of the field.
