@@ -13,6 +13,15 @@ noisebake::noise_texture!(
 );
 noisebake::noise_texture!(pub(crate) GROUPS = vac { dims: [8, 8, 4, 4], seed: 2, format: f32, groups: [{ axes: [0, 1], sigma: 1.9 }, { axes: [2] }, { axes: [3] }] });
 
+noisebake::noise_texture!(
+    TILE = sampler {
+        dims: [16, 8],
+        spp: 4,
+        sample_dims: 3,
+        seed: 1
+    }
+);
+
 fn generated(body: &str) -> Vec<u8> {
     let s = parse_toml(&format!("[[texture]]\nname = \"T\"\n{body}"))
         .unwrap()
@@ -35,6 +44,14 @@ fn macro_tables_equal_the_generator_bytes() {
             "kind = \"vac\"\ndims = [8, 8, 4, 4]\nseed = 2\nformat = \"f32\"\ngroups = [{ axes = [0, 1], sigma = 1.9 }, { axes = [2] }, { axes = [3] }]"
         )
     );
+    // A sampler tile is its key mask, viewed as a tile of 4 samples × 3 dimensions.
+    assert_eq!(
+        TILE.keys().bytes(),
+        generated("kind = \"sampler\"\ndims = [16, 8]\nspp = 4\nsample_dims = 3\nseed = 1")
+    );
+    let _: &noisebake::SamplerTile<16, 8, 4, 3> = &TILE;
+    let v = TILE.sample(-1, 9, 2, 3, 2);
+    assert!((0.0..1.0).contains(&v));
     // Typed views: dims and texel type are part of the item's type.
     let _: &noisebake::Mask3<u16, 16, 16, 4> = &STBN;
     assert!(GROUPS.get(-1, -1, -1, -1) > 0.0 && GROUPS.get(0, 0, 0, 0) < 1.0);

@@ -8,6 +8,16 @@ use noisebake_test_support::bake::spec;
 
 const PINS: &[(&str, &str, &str)] = &[
     (
+        "kind = \"sampler\"\ndims = [128, 128]",
+        "kind=sampler;dims=[128,128];seed=0;format=u16;spp=1;sample_dims=2;spatial_filter={kind=gauss,sigma=1};frames=1",
+        "f0e35767f236a9a95d18f1eb45e72450",
+    ),
+    (
+        "kind = \"sampler\"\ndims = [64, 32]\nseed = 3\nspp = 16\nsample_dims = 5\nspatial_filter = { kind = \"box\", size = 5 }\nframes = 4",
+        "kind=sampler;dims=[64,32];seed=3;format=u16;spp=16;sample_dims=5;spatial_filter={kind=box,size=5};frames=4",
+        "70398ec5b97856c6d9e0062b8704b2dc",
+    ),
+    (
         "kind = \"blue2d\"\ndims = [64, 64]",
         "kind=blue2d;dims=[64,64];seed=0;format=u8;sigma=1.5;initial_density=0.1",
         "a1d1f46f748c832b301b3efe30861ddd",

@@ -22,6 +22,8 @@ const SPECS: &[&str] = &[
     // otherwise), which go through the runtime's f32 warps.
     "kind = \"fast\"\ndims = [16, 16, 2]\nseed = 5\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 3 }\niterations = 3",
     "kind = \"fast\"\ndims = [16, 16, 4]\nseed = 5\nsample_space = \"sphere\"\nformat = \"u16x3\"\nspatial_filter = { kind = \"gauss\", sigma = 1.0 }\niterations = 3",
+    // A sampler tile: two pairs run on their own threads, a lone third dimension.
+    "kind = \"sampler\"\ndims = [16, 16]\nseed = 5\nspp = 4\nsample_dims = 3\nspatial_filter = { kind = \"box\", size = 3 }",
 ];
 
 #[test]
@@ -59,7 +61,7 @@ fn output_matches_the_golden_digests() {
     );
 }
 
-const GOLDEN: [u64; 12] = [
+const GOLDEN: [u64; 13] = [
     0x02bcc607887f687d,
     0xcb5fdf9617060b15,
     0x893f58b1ed87e261,
@@ -72,4 +74,5 @@ const GOLDEN: [u64; 12] = [
     0xec72c00d766b7a25,
     0x1a6fc64ea2ffa362,
     0xd569656c31a8846c,
+    0x2cd21203182deab5,
 ];

@@ -80,4 +80,5 @@ pub mod warp;
 
 pub use coord::Coord;
 pub use mask::{GpuTexture, Mask2, Mask3, Mask4};
+pub use sampler::SamplerTile;
 pub use texel::{GpuFormat, Texel};

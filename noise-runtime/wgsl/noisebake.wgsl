@@ -410,6 +410,31 @@ fn nb_sobol_owen(p: vec2<i32>, frame: u32, seed: u32) -> vec4<f32> {
     ));
 }
 
+// Dimension d of sample i of pixel p in frame `frame` of a baked sampler tile, as a 32-bit
+// fraction (SamplerTile::sample_bits): `keys` is the tile's r16uint key mask (one layer per
+// dimension), `spp` the samples per frame it was baked for. A pair of dimensions reads its two
+// keys, and the sample is the pair's (frame·spp + i)-th shuffled, Owen-scrambled Sobol point.
+fn nb_sampler_tile_bits(keys: texture_2d_array<u32>, p: vec2<i32>, frame: u32, i: u32, d: u32, spp: u32) -> u32 {
+    let dims = textureNumLayers(keys);
+    let size = textureDimensions(keys);
+    let dd = d % dims;
+    let first = dd & ~1u;
+    let c = vec2<u32>(nb_wrap(p.x, size.x), nb_wrap(p.y, size.y));
+    var key = textureLoad(keys, c, first, 0).x;
+    if (first + 1u < dims) {
+        key |= textureLoad(keys, c, first + 1u, 0).x << 16u;
+    }
+    let n = frame * spp + i % spp;
+    let index = nb_owen(n, nb_seed_combine(key, 0x53485546u));
+    let axis = dd & 1u;
+    return nb_owen(nb_sobol4(index)[axis], nb_seed_combine(key, axis));
+}
+
+// The same in [0, 1) (SamplerTile::sample).
+fn nb_sampler_tile(keys: texture_2d_array<u32>, p: vec2<i32>, frame: u32, i: u32, d: u32, spp: u32) -> f32 {
+    return nb_to_unit(nb_sampler_tile_bits(keys, p, frame, i, d, spp));
+}
+
 // ---------------------------------------------------------------------------------------------
 // 3D Perlin noise and fBm (noise_runtime::stochastic), deterministic and one-sample estimators
 // (Fajardo & Pharr, Algorithms 1 and 2)

@@ -182,11 +182,14 @@ pub fn run(opts: &Options) -> Result<Report, String> {
         .spawn(Readback::texture(target))
         .observe(move |e: On<ReadbackComplete>| sink.lock().unwrap().push(e.data.clone()));
 
-    // Read frames back until `opts.frames` have arrived that show the fog (the first ones may
-    // be blank while the pipeline and the mask upload settle).
+    // Read frames back until `opts.frames` have arrived that show the fog. The frames drawn
+    // before the material's pipeline is ready are blank (Bevy compiles it in the background,
+    // and a slow driver draws many frames first), and a slow driver delivers readbacks late:
+    // so wait for fog frames for up to two minutes, however many updates that takes.
     let texels = (n * n) as usize;
     let mut kept: Vec<Vec<u8>> = Vec::new();
-    for _ in 0..opts.frames * 4 + 200 {
+    let started = std::time::Instant::now();
+    while started.elapsed() < std::time::Duration::from_secs(120) {
         app.update();
         for f in frames.lock().unwrap().drain(..) {
             if f.len() != texels * 4 {
@@ -205,7 +208,11 @@ pub fn run(opts: &Options) -> Result<Report, String> {
         }
     }
     if kept.len() < opts.frames as usize {
-        return Err(format!("only {} frames showed the fog", kept.len()));
+        return Err(format!(
+            "only {} frames showed the fog in {:.0} s",
+            kept.len(),
+            started.elapsed().as_secs_f64()
+        ));
     }
     let adapter = app
         .world()

@@ -104,9 +104,11 @@ enum Command {
     /// 2), or `all` (the default, these three); `bench` (bake time against size for every
     /// generator, on one and two threads, beside its estimate: about 6 minutes on 2 cores);
     /// `vector` (directions: our vector FAST masks against EA's and the free constructions
-    /// after box 5×5 and Gaussian σ 1 × EMA, cosine hemisphere and sphere).
+    /// after box 5×5 and Gaussian σ 1 × EMA, cosine hemisphere and sphere); `sampler` (several
+    /// samples per pixel: baked sampler tiles against Heitz et al. 2019's tables with
+    /// `--features peers`, and the free samplers, at 1–16 spp after four filters).
     Report {
-        /// Which section: fast, stochastic, cnj, all, bench or vector.
+        /// Which section: fast, stochastic, cnj, all, bench, vector or sampler.
         #[arg(default_value = "all")]
         section: String,
         /// Write the stochastic-noise rows as a JSON list (`{"noise", "variant", "ns_per_eval",
@@ -301,9 +303,18 @@ fn write_outputs(
 ) -> Result<(), String> {
     let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     match ext {
-        "npy" => {
-            write_atomic(out, &npy::to_npy(t)).map_err(|e| format!("{}: {e}", out.display()))?
-        }
+        // A sampler tile's .npy holds its samples as the runtime returns them, for outside
+        // checks; .bin and .ktx2 hold the baked keys.
+        "npy" => match spec.map(|s| &s.kind) {
+            Some(spec::Kind::Sampler(p)) => {
+                let samples = build_assets::generate::sampler::samples(t, p);
+                write_atomic(out, &npy::to_npy(&samples))
+                    .map_err(|e| format!("{}: {e}", out.display()))?
+            }
+            _ => {
+                write_atomic(out, &npy::to_npy(t)).map_err(|e| format!("{}: {e}", out.display()))?
+            }
+        },
         "bin" => write_atomic(out, &t.data).map_err(|e| format!("{}: {e}", out.display()))?,
         "png" => {
             let dir = out.parent().unwrap_or(Path::new("."));
@@ -519,11 +530,28 @@ fn report(
     let mut doc = serde_json::Map::new();
     if !matches!(
         section,
-        "all" | "fast" | "stochastic" | "cnj" | "bench" | "vector"
+        "all" | "fast" | "stochastic" | "cnj" | "bench" | "vector" | "sampler"
     ) {
         return Err(format!(
-            "unknown report section `{section}`: use fast, stochastic, cnj, all, bench or vector"
+            "unknown report section `{section}`: use fast, stochastic, cnj, all, bench, vector or sampler"
         ));
+    }
+    if section == "sampler" {
+        use noisebake_cli::report::sampler;
+        for l in sampler::READING.lines() {
+            println!("  {l}");
+        }
+        #[cfg(not(feature = "peers"))]
+        println!(
+            "  (Heitz et al. 2019's tables are measured with `--features peers`: cargo run --release -p noisebake-cli --features peers -- report sampler)"
+        );
+        sampler::run(out, &mut log)?;
+        println!(
+            "  wrote {} and {}",
+            out.join("sampler.json").display(),
+            out.join("sampler.png").display()
+        );
+        return Ok(());
     }
     if section == "vector" {
         let r = noisebake_cli::report::vector::run(out, &mut log)?;

@@ -396,3 +396,85 @@ fn cache_commands_list_verify_and_prune() {
     let (ok, out, _) = noisebake(&["cache", "verify", "--cache-dir", c]);
     assert!(ok && out.contains("1 entries, 1 valid"), "{out}");
 }
+
+/// The sampler contract for outside checks: `gen --kind sampler … --out S.npy` writes the
+/// samples as the runtime returns them, float32 of shape (H, W, spp, D) — (frames, H, W, spp,
+/// D) when optimised for several frames — and `.bin` the baked keys the runtime reads them from.
+#[test]
+fn gen_writes_a_sampler_tiles_samples_and_its_keys() {
+    let d = tmp("sampler");
+    let args = |out: &std::path::Path, frames: &str| {
+        let mut a: Vec<String> = [
+            "gen",
+            "--kind",
+            "sampler",
+            "--dims",
+            "16x8",
+            "--spp",
+            "4",
+            "--sample-dims",
+            "3",
+            "--spatial-filter",
+            "{kind=\"box\",size=3}",
+            "--frames",
+            frames,
+            "--seed",
+            "2",
+            "--out",
+        ]
+        .map(String::from)
+        .to_vec();
+        a.push(out.to_str().unwrap().to_string());
+        a
+    };
+    let run = |a: Vec<String>| {
+        let refs: Vec<&str> = a.iter().map(String::as_str).collect();
+        let (ok, _, err) = noisebake(&refs);
+        assert!(ok, "{err}");
+    };
+    let (npy, bin, npy2) = (d.join("s.npy"), d.join("s.bin"), d.join("s2.npy"));
+    run(args(&npy, "1"));
+    run(args(&bin, "1"));
+    run(args(&npy2, "2"));
+    let header = |bytes: &[u8]| {
+        let hlen = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+        (
+            String::from_utf8_lossy(&bytes[10..10 + hlen]).to_string(),
+            10 + hlen,
+        )
+    };
+    let bytes = std::fs::read(&npy).unwrap();
+    let (h, start) = header(&bytes);
+    assert!(
+        h.contains("'descr': '<f4'") && h.contains("'shape': (8, 16, 4, 3)"),
+        "{h}"
+    );
+    let samples: Vec<f32> = bytes[start..]
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    assert_eq!(samples.len(), 8 * 16 * 4 * 3);
+    let keys = std::fs::read(&bin).unwrap();
+    assert_eq!(keys.len(), 16 * 8 * 3 * 2, "three layers of 16-bit keys");
+    let tile: noise_runtime::SamplerTile<16, 8, 4, 3> =
+        noise_runtime::SamplerTile::new(noise_runtime::Mask3::new(Vec::leak(keys)));
+    for y in 0..8 {
+        for x in 0..16 {
+            for i in 0..4 {
+                for dim in 0..3 {
+                    let at = ((y * 16 + x) * 4 + i) * 3 + dim;
+                    assert_eq!(
+                        samples[at],
+                        tile.sample(x as i32, y as i32, 0, i as u32, dim as u32),
+                        "({x}, {y}) sample {i} dimension {dim}"
+                    );
+                }
+            }
+        }
+    }
+    // Optimised for two frames: a time axis, and frame 1 continues each pixel's sequence.
+    let bytes2 = std::fs::read(&npy2).unwrap();
+    let (h2, start2) = header(&bytes2);
+    assert!(h2.contains("'shape': (2, 8, 16, 4, 3)"), "{h2}");
+    assert_eq!(bytes2.len() - start2, 2 * samples.len() * 4);
+}

@@ -26,6 +26,13 @@ pub struct Gpu {
     pub timestamps: bool,
 }
 
+/// A Vulkan-only wgpu instance with no display.
+fn instance() -> wgpu::Instance {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    desc.backends = wgpu::Backends::VULKAN;
+    wgpu::Instance::new(desc)
+}
+
 /// Parses and validates WGSL with naga, so that an error in the library or a kernel is reported
 /// with its line and message before a pipeline is built.
 pub fn validate(source: &str) -> Result<naga::Module, String> {
@@ -54,9 +61,7 @@ pub enum Binding<'a> {
 impl Gpu {
     /// A device on the first adapter wgpu finds (Vulkan only, software adapters included).
     pub fn new() -> Result<Gpu, String> {
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::VULKAN;
-        let instance = wgpu::Instance::new(desc);
+        let instance = instance();
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,
@@ -64,6 +69,18 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(|e| format!("no GPU adapter: {e}"))?;
+        Gpu::on(adapter)
+    }
+
+    /// A device on every Vulkan adapter of the machine, in the order wgpu lists them: a
+    /// hardware GPU and the software drivers (lavapipe, SwiftShader) side by side, so a test
+    /// can hold each driver to the CPU's values.
+    pub fn all() -> Vec<Result<Gpu, String>> {
+        let adapters = pollster::block_on(instance().enumerate_adapters(wgpu::Backends::VULKAN));
+        adapters.into_iter().map(Gpu::on).collect()
+    }
+
+    fn on(adapter: wgpu::Adapter) -> Result<Gpu, String> {
         let info = adapter.get_info();
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let required_features = if timestamps {
@@ -86,27 +103,75 @@ impl Gpu {
         })
     }
 
-    /// For tests: the device, or `None` with a message saying why the test is skipped. Under CI
-    /// (`CI` set in the environment) a missing adapter is a failure instead: there the GPU tests
-    /// must run.
-    pub fn for_tests() -> Option<Gpu> {
-        match Gpu::new() {
-            Ok(g) => Some(g),
-            Err(e) if std::env::var_os("CI").is_some() => {
+    /// For tests: a device on every Vulkan adapter ([`Gpu::all`]), each test run once per
+    /// driver; empty, with a message saying why the tests are skipped, where there is none.
+    ///
+    /// Under CI (`CI` set in the environment) a missing adapter is a failure instead: there the
+    /// GPU tests must run. `NOISEBAKE_GPU_DRIVERS`, a comma-separated list of names
+    /// (`llvmpipe,SwiftShader` in `.ci/run`), makes each named driver required: a run where
+    /// one of them has no adapter fails rather than passing on the others alone.
+    pub fn for_tests() -> Vec<Gpu> {
+        let mut gpus = Vec::new();
+        let mut errors = Vec::new();
+        for g in Gpu::all() {
+            match g {
+                Ok(g) => gpus.push(g),
+                Err(e) => errors.push(e),
+            }
+        }
+        let required = std::env::var("NOISEBAKE_GPU_DRIVERS").unwrap_or_default();
+        for name in required.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+            let found = gpus.iter().any(|g| g.info.name.contains(name));
+            assert!(
+                found,
+                "NOISEBAKE_GPU_DRIVERS names {name}, but no Vulkan adapter is called so (found: \
+                 {:?}; errors: {errors:?}); .ci/run installs lavapipe and SwiftShader",
+                gpus.iter().map(|g| &g.info.name).collect::<Vec<_>>()
+            );
+        }
+        if gpus.is_empty() {
+            let e = if errors.is_empty() {
+                "no GPU adapter".to_string()
+            } else {
+                errors.join("; ")
+            };
+            if std::env::var_os("CI").is_some() {
                 panic!(
                     "{e}: CI must run the GPU tests (install mesa-vulkan-drivers and libvulkan1)"
-                )
-            }
-            Err(e) => {
-                // Straight to the stderr handle: the test harness captures `eprintln!` of
-                // passing tests, and a skip must be seen.
-                use std::io::Write;
-                let _ = writeln!(
-                    std::io::stderr(),
-                    "SKIPPED: {e}. The GPU tests need a Vulkan device; on a machine without one, \
-                     `apt-get install mesa-vulkan-drivers libvulkan1` gives a software one."
                 );
-                None
+            }
+            // Straight to the stderr handle: the test harness captures `eprintln!` of passing
+            // tests, and a skip must be seen.
+            use std::io::Write;
+            let _ = writeln!(
+                std::io::stderr(),
+                "SKIPPED: {e}. The GPU tests need a Vulkan device; on a machine without one, \
+                 `apt-get install mesa-vulkan-drivers libvulkan1` gives a software one."
+            );
+        }
+        gpus
+    }
+
+    /// Runs `test` on every device of [`Gpu::for_tests`] (made once per test binary), one
+    /// driver after another, and fails naming the driver whose run failed.
+    pub fn each_for_tests(test: impl Fn(&Gpu)) {
+        static GPUS: std::sync::OnceLock<Vec<Gpu>> = std::sync::OnceLock::new();
+        let gpus = GPUS.get_or_init(|| {
+            let gpus = Gpu::for_tests();
+            for g in &gpus {
+                eprintln!("GPU tests on {}", g.describe());
+            }
+            gpus
+        });
+        for g in gpus {
+            let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| test(g)));
+            if let Err(e) = run {
+                let msg = e
+                    .downcast_ref::<String>()
+                    .map(String::as_str)
+                    .or_else(|| e.downcast_ref::<&str>().copied())
+                    .unwrap_or("(no message)");
+                panic!("on {}: {msg}", g.describe());
             }
         }
     }

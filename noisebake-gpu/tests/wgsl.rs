@@ -10,19 +10,6 @@ use noisebake::cnj::Cnj2;
 use noisebake::stochastic::{self, Fractal};
 use noisebake::{Mask3, hash, ldg, sequence};
 use noisebake_gpu::{Binding, Gpu, bytes_of, floats, validate, words};
-use std::sync::OnceLock;
-
-fn gpu() -> Option<&'static Gpu> {
-    static GPU: OnceLock<Option<Gpu>> = OnceLock::new();
-    GPU.get_or_init(|| {
-        let g = Gpu::for_tests();
-        if let Some(g) = &g {
-            eprintln!("GPU tests on {}", g.describe());
-        }
-        g
-    })
-    .as_ref()
-}
 
 /// Inputs per function.
 const N: usize = 1 << 18;
@@ -121,25 +108,25 @@ fn address_mask<const W: u32, const H: u32, const D: u32>() -> Mask3<f32, W, H, 
 
 #[test]
 fn integer_functions_match_bit_for_bit() {
-    let Some(g) = gpu() else { return };
-    let mut rng = Rng(1);
-    let inputs: Vec<[i32; 4]> = (0..N)
-        .map(|_| {
-            [
-                coord(&mut rng),
-                coord(&mut rng),
-                coord(&mut rng),
-                coord(&mut rng),
-            ]
-        })
-        .collect();
-    let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
-    const OUT: usize = 16;
-    let kernel = kernel(
-        "vec4<i32>",
-        "@group(0) @binding(1) var<storage, read_write> outp: array<u32>;",
-        &format!(
-            "let p = inp[i];
+    Gpu::each_for_tests(|g| {
+        let mut rng = Rng(1);
+        let inputs: Vec<[i32; 4]> = (0..N)
+            .map(|_| {
+                [
+                    coord(&mut rng),
+                    coord(&mut rng),
+                    coord(&mut rng),
+                    coord(&mut rng),
+                ]
+            })
+            .collect();
+        let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
+        const OUT: usize = 16;
+        let kernel = kernel(
+            "vec4<i32>",
+            "@group(0) @binding(1) var<storage, read_write> outp: array<u32>;",
+            &format!(
+                "let p = inp[i];
              let f = bitcast<u32>(p.z);
              let k = bitcast<u32>(p.w);
              let o = i * {OUT}u;
@@ -162,66 +149,67 @@ fn integer_functions_match_bit_for_bit() {
              outp[o + 14u] = b.x + 64u * (b.y + 32u * b.z);
              let c = nb_mask4_coord_k(vec4<i32>(p.xyz, p.x ^ p.y), vec4<u32>(8u, 8u, 3u, 5u), k);
              outp[o + 15u] = c.x + 8u * (c.y + 8u * c.z);"
-        ),
-    );
-    let out = words(&run(g, &kernel, &bytes_of(&flat), N, N * OUT * 4));
-    let odd = address_mask::<37, 64, 13>();
-    let pow2 = address_mask::<64, 32, 16>();
-    let m4 = {
-        let bytes: Vec<u8> = (0..8 * 8 * 3 * 5)
-            .flat_map(|i| (i as f32).to_le_bytes())
-            .collect();
-        noisebake::Mask4::<f32, 8, 8, 3, 5>::new(Box::leak(bytes.into_boxed_slice()))
-    };
-    let names = [
-        "r2",
-        "r2_frame",
-        "plus",
-        "plus_frame",
-        "bayer<8>",
-        "bayer<2048>",
-        "bayer_frame<16>",
-        "hash2",
-        "hash3",
-        "pcg",
-        "r2_point.0",
-        "r2_point.1",
-        "golden",
-        "get_k 37x64x13",
-        "get_k 64x32x16",
-        "Mask4 get_k",
-    ];
-    for (i, &[x, y, z, w]) in inputs.iter().enumerate() {
-        let (f, k) = (z as u32, w as u32);
-        let cpu = [
-            ldg::r2(x, y).to_bits(),
-            ldg::r2_frame(x, y, f).to_bits(),
-            ldg::plus(x, y).to_bits(),
-            ldg::plus_frame(x, y, f).to_bits(),
-            ldg::bayer::<8>(x, y).to_bits(),
-            ldg::bayer::<2048>(x, y).to_bits(),
-            ldg::bayer_frame::<16>(x, y, f).to_bits(),
-            hash::hash2(x, y, k),
-            hash::hash3(x, y, z, k),
-            hash::pcg(x as u32),
-            sequence::r2_point(k).0,
-            sequence::r2_point(k).1,
-            sequence::golden(f),
-            odd.get_k(x, y, z, k) as u32,
-            pow2.get_k(x, y, z, k) as u32,
-            m4.get_k(x, y, z, x ^ y, k) as u32,
+            ),
+        );
+        let out = words(&run(g, &kernel, &bytes_of(&flat), N, N * OUT * 4));
+        let odd = address_mask::<37, 64, 13>();
+        let pow2 = address_mask::<64, 32, 16>();
+        let m4 = {
+            let bytes: Vec<u8> = (0..8 * 8 * 3 * 5)
+                .flat_map(|i| (i as f32).to_le_bytes())
+                .collect();
+            noisebake::Mask4::<f32, 8, 8, 3, 5>::new(Box::leak(bytes.into_boxed_slice()))
+        };
+        let names = [
+            "r2",
+            "r2_frame",
+            "plus",
+            "plus_frame",
+            "bayer<8>",
+            "bayer<2048>",
+            "bayer_frame<16>",
+            "hash2",
+            "hash3",
+            "pcg",
+            "r2_point.0",
+            "r2_point.1",
+            "golden",
+            "get_k 37x64x13",
+            "get_k 64x32x16",
+            "Mask4 get_k",
         ];
-        for (j, c) in cpu.iter().enumerate() {
-            assert_eq!(
-                out[i * OUT + j],
-                *c,
-                "{} at {:?}: GPU {:#x}, CPU {c:#x}",
-                names[j],
-                inputs[i],
-                out[i * OUT + j]
-            );
+        for (i, &[x, y, z, w]) in inputs.iter().enumerate() {
+            let (f, k) = (z as u32, w as u32);
+            let cpu = [
+                ldg::r2(x, y).to_bits(),
+                ldg::r2_frame(x, y, f).to_bits(),
+                ldg::plus(x, y).to_bits(),
+                ldg::plus_frame(x, y, f).to_bits(),
+                ldg::bayer::<8>(x, y).to_bits(),
+                ldg::bayer::<2048>(x, y).to_bits(),
+                ldg::bayer_frame::<16>(x, y, f).to_bits(),
+                hash::hash2(x, y, k),
+                hash::hash3(x, y, z, k),
+                hash::pcg(x as u32),
+                sequence::r2_point(k).0,
+                sequence::r2_point(k).1,
+                sequence::golden(f),
+                odd.get_k(x, y, z, k) as u32,
+                pow2.get_k(x, y, z, k) as u32,
+                m4.get_k(x, y, z, x ^ y, k) as u32,
+            ];
+            for (j, c) in cpu.iter().enumerate() {
+                assert_eq!(
+                    out[i * OUT + j],
+                    *c,
+                    "{} at {:?}: GPU {:#x}, CPU {c:#x}",
+                    names[j],
+                    inputs[i],
+                    out[i * OUT + j]
+                );
+            }
         }
-    }
+    });
 }
 
 /// The samplers of several values per pixel (`noise_runtime::sampler`) are integer arithmetic
@@ -229,24 +217,24 @@ fn integer_functions_match_bit_for_bit() {
 #[test]
 fn samplers_match_bit_for_bit() {
     use noisebake::sampler;
-    let Some(g) = gpu() else { return };
-    let mut rng = Rng(4);
-    let inputs: Vec<[i32; 4]> = (0..N)
-        .map(|_| {
-            let f = match rng.next_u64() % 3 {
-                0 => (rng.next_u64() % 256) as i32,
-                _ => rng.i32(),
-            };
-            [coord(&mut rng), coord(&mut rng), f, rng.i32()]
-        })
-        .collect();
-    let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
-    const OUT: usize = 22;
-    let kernel = kernel(
-        "vec4<i32>",
-        "@group(0) @binding(1) var<storage, read_write> outp: array<u32>;",
-        &format!(
-            "let p = inp[i];
+    Gpu::each_for_tests(|g| {
+        let mut rng = Rng(4);
+        let inputs: Vec<[i32; 4]> = (0..N)
+            .map(|_| {
+                let f = match rng.next_u64() % 3 {
+                    0 => (rng.next_u64() % 256) as i32,
+                    _ => rng.i32(),
+                };
+                [coord(&mut rng), coord(&mut rng), f, rng.i32()]
+            })
+            .collect();
+        let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
+        const OUT: usize = 22;
+        let kernel = kernel(
+            "vec4<i32>",
+            "@group(0) @binding(1) var<storage, read_write> outp: array<u32>;",
+            &format!(
+                "let p = inp[i];
              let f = bitcast<u32>(p.z);
              let s = bitcast<u32>(p.w);
              let o = i * {OUT}u;
@@ -265,74 +253,137 @@ fn samplers_match_bit_for_bit() {
              outp[o + 13u] = e.x; outp[o + 14u] = e.y; outp[o + 15u] = e.z; outp[o + 16u] = e.w;
              outp[o + 17u] = r2.x; outp[o + 18u] = r2.y;
              outp[o + 19u] = r3.x; outp[o + 20u] = r3.y; outp[o + 21u] = r3.z;"
-        ),
-    );
-    let out = words(&run(g, &kernel, &bytes_of(&flat), N, N * OUT * 4));
-    let unit = |v: u32| sequence::to_unit(v);
-    for (i, &[x, y, f, s]) in inputs.iter().enumerate() {
-        let (f, s) = (f as u32, s as u32);
-        let rot = [ldg::r2(x, y), unit(s), unit(x as u32)];
-        let cpu: Vec<f32> = [
-            sampler::ign_r2::<4>(x, y, f).to_vec(),
-            sampler::rd_ign_r2::<2>(x, y, f).to_vec(),
-            sampler::rd_ign_r2::<3>(x, y, f).to_vec(),
-            sampler::rd_ign_r2::<4>(x, y, f).to_vec(),
-            sampler::sobol_owen::<4>(x, y, f, s).to_vec(),
-            sampler::rd::<2>(f, [rot[0], rot[1]]).to_vec(),
-            sampler::rd::<3>(f, rot).to_vec(),
-        ]
-        .concat();
-        for (j, c) in cpu.iter().enumerate() {
+            ),
+        );
+        let out = words(&run(g, &kernel, &bytes_of(&flat), N, N * OUT * 4));
+        let unit = |v: u32| sequence::to_unit(v);
+        for (i, &[x, y, f, s]) in inputs.iter().enumerate() {
+            let (f, s) = (f as u32, s as u32);
+            let rot = [ldg::r2(x, y), unit(s), unit(x as u32)];
+            let cpu: Vec<f32> = [
+                sampler::ign_r2::<4>(x, y, f).to_vec(),
+                sampler::rd_ign_r2::<2>(x, y, f).to_vec(),
+                sampler::rd_ign_r2::<3>(x, y, f).to_vec(),
+                sampler::rd_ign_r2::<4>(x, y, f).to_vec(),
+                sampler::sobol_owen::<4>(x, y, f, s).to_vec(),
+                sampler::rd::<2>(f, [rot[0], rot[1]]).to_vec(),
+                sampler::rd::<3>(f, rot).to_vec(),
+            ]
+            .concat();
+            for (j, c) in cpu.iter().enumerate() {
+                assert_eq!(
+                    out[i * OUT + j],
+                    c.to_bits(),
+                    "value {j} at {:?}: GPU {}, CPU {c}",
+                    inputs[i],
+                    f32::from_bits(out[i * OUT + j])
+                );
+            }
+        }
+    });
+}
+
+/// A baked sampler tile read through `nb_sampler_tile_bits` (its keys uploaded as the r16uint
+/// mask they are) gives the runtime's `SamplerTile::sample_bits` for every pixel, frame, sample
+/// and dimension, coordinates far outside the tile included.
+#[test]
+fn sampler_tiles_match_bit_for_bit() {
+    use noisebake::SamplerTile;
+    // 8×4 pixels, 5 samples per frame, 3 dimensions (a pair and a lone one).
+    let keys: Mask3<u16, 8, 4, 3> = Mask3::new(Vec::leak(
+        noisebake_test_support::bake::gen_tex(
+            "kind = \"sampler\"\ndims = [8, 4]\nspp = 5\nsample_dims = 3\nseed = 2",
+        )
+        .data,
+    ));
+    let tile: SamplerTile<8, 4, 5, 3> = SamplerTile::new(keys);
+    Gpu::each_for_tests(|g| {
+        let texture = g.upload_mask(keys.gpu_texture(), keys.gpu_bytes().unwrap());
+        let mut rng = Rng(6);
+        let inputs: Vec<[i32; 4]> = (0..N / 8)
+            .map(|_| {
+                let f = match rng.next_u64() % 2 {
+                    0 => (rng.next_u64() % 64) as i32,
+                    _ => rng.i32(),
+                };
+                let sd = (rng.next_u64() % 64) as i32; // sample (low 3 bits of 8) and dimension
+                [coord(&mut rng), coord(&mut rng), f, sd]
+            })
+            .collect();
+        let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
+        let kernel = kernel(
+            "vec4<i32>",
+            "@group(0) @binding(1) var<storage, read_write> outp: array<u32>;
+             @group(0) @binding(2) var keys: texture_2d_array<u32>;",
+            "let p = inp[i];
+             let sd = bitcast<u32>(p.w);
+             outp[i] = nb_sampler_tile_bits(keys, p.xy, bitcast<u32>(p.z), sd & 7u, sd >> 3u, 5u);",
+        );
+        let groups = inputs.len().div_ceil(64) as u32;
+        let out = g
+            .run(
+                &kernel,
+                [groups.min(4096), groups.div_ceil(4096), 1],
+                &[
+                    Binding::Input(&bytes_of(&flat)),
+                    Binding::Output(inputs.len() * 4),
+                    Binding::Texture(&texture),
+                ],
+            )
+            .unwrap_or_else(|e| panic!("{e}"))
+            .remove(0);
+        let out = words(&out);
+        for (j, &[x, y, f, sd]) in inputs.iter().enumerate() {
+            let (i, d) = (sd as u32 & 7, sd as u32 >> 3);
+            let cpu = tile.sample_bits(x, y, f as u32, i, d);
             assert_eq!(
-                out[i * OUT + j],
-                c.to_bits(),
-                "value {j} at {:?}: GPU {}, CPU {c}",
-                inputs[i],
-                f32::from_bits(out[i * OUT + j])
+                out[j], cpu,
+                "pixel ({x}, {y}) frame {f} sample {i} dimension {d}"
             );
         }
-    }
+    });
 }
 
 /// IGN: the runtime rounds an f64 product, the GPU keeps it in 32-bit fixed point; they agree
 /// within 2^-23 modulo 1 (a value near 1 on one side may be near 0 on the other).
 #[test]
 fn ign_matches_within_two_to_the_minus_23() {
-    let Some(g) = gpu() else { return };
-    let mut rng = Rng(2);
-    let inputs: Vec<[i32; 4]> = (0..N)
-        .map(|_| [coord(&mut rng), coord(&mut rng), rng.i32(), 0])
-        .collect();
-    let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
-    let kernel = kernel(
-        "vec4<i32>",
-        "@group(0) @binding(1) var<storage, read_write> outp: array<f32>;",
-        "let p = inp[i];
+    Gpu::each_for_tests(|g| {
+        let mut rng = Rng(2);
+        let inputs: Vec<[i32; 4]> = (0..N)
+            .map(|_| [coord(&mut rng), coord(&mut rng), rng.i32(), 0])
+            .collect();
+        let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
+        let kernel = kernel(
+            "vec4<i32>",
+            "@group(0) @binding(1) var<storage, read_write> outp: array<f32>;",
+            "let p = inp[i];
              outp[2u * i] = nb_ign(p.xy);
              outp[2u * i + 1u] = nb_ign_frame(p.xy, bitcast<u32>(p.z));",
-    );
-    let out = floats(&run(g, &kernel, &bytes_of(&flat), N, N * 8));
-    let mut worst = 0.0f32;
-    for (i, &[x, y, f, _]) in inputs.iter().enumerate() {
-        for (j, cpu) in [ldg::ign(x, y), ldg::ign_frame(x, y, f as u32)]
-            .into_iter()
-            .enumerate()
-        {
-            let d = (out[2 * i + j] - cpu).abs();
-            let d = d.min(1.0 - d);
-            worst = worst.max(d);
-            assert!(
-                d <= f32::EPSILON,
-                "ign{} at ({x}, {y}, {f}): GPU {}, CPU {cpu}",
-                ["", "_frame"][j],
-                out[2 * i + j]
-            );
+        );
+        let out = floats(&run(g, &kernel, &bytes_of(&flat), N, N * 8));
+        let mut worst = 0.0f32;
+        for (i, &[x, y, f, _]) in inputs.iter().enumerate() {
+            for (j, cpu) in [ldg::ign(x, y), ldg::ign_frame(x, y, f as u32)]
+                .into_iter()
+                .enumerate()
+            {
+                let d = (out[2 * i + j] - cpu).abs();
+                let d = d.min(1.0 - d);
+                worst = worst.max(d);
+                assert!(
+                    d <= f32::EPSILON,
+                    "ign{} at ({x}, {y}, {f}): GPU {}, CPU {cpu}",
+                    ["", "_frame"][j],
+                    out[2 * i + j]
+                );
+            }
         }
-    }
-    eprintln!(
-        "ign: largest difference {worst:e} (bound 2^-23 = {:e})",
-        f32::EPSILON
-    );
+        eprintln!(
+            "ign: largest difference {worst:e} (bound 2^-23 = {:e})",
+            f32::EPSILON
+        );
+    });
 }
 
 /// Points for the gradient noises: a quarter near the origin, a quarter at lattice planes and
@@ -400,61 +451,62 @@ fn noise_kernel() -> String {
 /// or octave, equally valid; such inputs must stay below 1 in 10^4.
 #[test]
 fn gradient_noise_matches_within_tolerance() {
-    let Some(g) = gpu() else { return };
-    let inputs = noise_inputs(3);
-    let flat: Vec<f32> = inputs.iter().flatten().copied().collect();
-    let out = floats(&run(
-        g,
-        &noise_kernel(),
-        &bytes_of(&flat),
-        N,
-        N * NOISE_OUT * 4,
-    ));
-    let mut worst = [0.0f64; NOISE_OUT];
-    let mut flips = [0usize; NOISE_OUT];
-    for (i, &[x, y, z, xi]) in inputs.iter().enumerate() {
-        let p = [x, y, z];
-        let mut cpu = vec![
-            stochastic::Perlin::new(7).sample(p),
-            stochastic::Perlin::new(7).estimate(p, xi),
-        ];
-        let mut tol = vec![2f64.powi(-16), 0.0];
-        for &(o, l, gain) in &FRACTALS {
-            let f = Fractal::new(o, l, gain);
-            cpu.push(stochastic::Fbm::new(f, 7).sample(p));
-            cpu.push(stochastic::Fbm::new(f, 7).estimate(p, xi));
-            let weight: f64 = (0..o).map(|k| (gain.abs() as f64).powi(k as i32)).sum();
-            tol.push(weight * 2f64.powi(-16));
-            tol.push(0.0);
-        }
-        for j in 0..NOISE_OUT {
-            let gpu_v = out[i * NOISE_OUT + j];
-            let d = (gpu_v as f64 - cpu[j] as f64).abs();
-            if tol[j] == 0.0 {
-                // An estimator: equal bits, or a flipped decision.
-                if gpu_v.to_bits() != cpu[j].to_bits() {
-                    flips[j] += 1;
-                    assert!(gpu_v.is_finite(), "estimator {j} at {p:?}, ξ {xi}: {gpu_v}");
+    Gpu::each_for_tests(|g| {
+        let inputs = noise_inputs(3);
+        let flat: Vec<f32> = inputs.iter().flatten().copied().collect();
+        let out = floats(&run(
+            g,
+            &noise_kernel(),
+            &bytes_of(&flat),
+            N,
+            N * NOISE_OUT * 4,
+        ));
+        let mut worst = [0.0f64; NOISE_OUT];
+        let mut flips = [0usize; NOISE_OUT];
+        for (i, &[x, y, z, xi]) in inputs.iter().enumerate() {
+            let p = [x, y, z];
+            let mut cpu = vec![
+                stochastic::Perlin::new(7).sample(p),
+                stochastic::Perlin::new(7).estimate(p, xi),
+            ];
+            let mut tol = vec![2f64.powi(-16), 0.0];
+            for &(o, l, gain) in &FRACTALS {
+                let f = Fractal::new(o, l, gain);
+                cpu.push(stochastic::Fbm::new(f, 7).sample(p));
+                cpu.push(stochastic::Fbm::new(f, 7).estimate(p, xi));
+                let weight: f64 = (0..o).map(|k| (gain.abs() as f64).powi(k as i32)).sum();
+                tol.push(weight * 2f64.powi(-16));
+                tol.push(0.0);
+            }
+            for j in 0..NOISE_OUT {
+                let gpu_v = out[i * NOISE_OUT + j];
+                let d = (gpu_v as f64 - cpu[j] as f64).abs();
+                if tol[j] == 0.0 {
+                    // An estimator: equal bits, or a flipped decision.
+                    if gpu_v.to_bits() != cpu[j].to_bits() {
+                        flips[j] += 1;
+                        assert!(gpu_v.is_finite(), "estimator {j} at {p:?}, ξ {xi}: {gpu_v}");
+                    }
+                } else {
+                    worst[j] = worst[j].max(d);
+                    assert!(
+                        d <= tol[j],
+                        "value {j} at {p:?}: GPU {gpu_v}, CPU {}, |Δ| {d:e} > {:e}",
+                        cpu[j],
+                        tol[j]
+                    );
                 }
-            } else {
-                worst[j] = worst[j].max(d);
-                assert!(
-                    d <= tol[j],
-                    "value {j} at {p:?}: GPU {gpu_v}, CPU {}, |Δ| {d:e} > {:e}",
-                    cpu[j],
-                    tol[j]
-                );
             }
         }
-    }
-    eprintln!(
-        "largest |GPU − CPU| per value (estimators: 0): {:?}",
-        worst.map(|w| format!("{w:.2e}"))
-    );
-    eprintln!("estimator decisions that flipped, of {N}: {flips:?}");
-    for (j, &f) in flips.iter().enumerate() {
-        assert!(f * 10_000 <= N, "value {j}: {f} flipped decisions of {N}");
-    }
+        eprintln!(
+            "largest |GPU − CPU| per value (estimators: 0): {:?}",
+            worst.map(|w| format!("{w:.2e}"))
+        );
+        eprintln!("estimator decisions that flipped, of {N}: {flips:?}");
+        for (j, &f) in flips.iter().enumerate() {
+            assert!(f * 10_000 <= N, "value {j}: {f} flipped decisions of {N}");
+        }
+    });
 }
 
 /// CNJ's closest point: WGSL has no f64, so the GPU places points in f32. Over queries within
@@ -464,58 +516,59 @@ fn gradient_noise_matches_within_tolerance() {
 /// within twice that of a tie.
 #[test]
 fn cnj_closest_point_matches() {
-    let Some(g) = gpu() else { return };
-    let mut rng = Rng(4);
-    let cnj = Cnj2::PAPER;
-    let queries: Vec<[f32; 2]> = (0..N / 4)
-        .map(|_| {
-            [
-                (rng.unit_f32() * 2.0 - 1.0) * 256.0,
-                (rng.unit_f32() * 2.0 - 1.0) * 256.0,
-            ]
-        })
-        .collect();
-    let flat: Vec<f32> = queries.iter().flatten().copied().collect();
-    let kernel = kernel(
-        "vec2<f32>",
-        "@group(0) @binding(1) var<storage, read_write> outp: array<vec4<f32>>;",
-        "let n = nb_cnj2_closest(nb_cnj2_paper(), inp[i]);
+    Gpu::each_for_tests(|g| {
+        let mut rng = Rng(4);
+        let cnj = Cnj2::PAPER;
+        let queries: Vec<[f32; 2]> = (0..N / 4)
+            .map(|_| {
+                [
+                    (rng.unit_f32() * 2.0 - 1.0) * 256.0,
+                    (rng.unit_f32() * 2.0 - 1.0) * 256.0,
+                ]
+            })
+            .collect();
+        let flat: Vec<f32> = queries.iter().flatten().copied().collect();
+        let kernel = kernel(
+            "vec2<f32>",
+            "@group(0) @binding(1) var<storage, read_write> outp: array<vec4<f32>>;",
+            "let n = nb_cnj2_closest(nb_cnj2_paper(), inp[i]);
              outp[i] = vec4<f32>(n.point, bitcast<f32>(n.site.x), bitcast<f32>(n.site.y));",
-    );
-    let n = queries.len();
-    let out = floats(&run(g, &kernel, &bytes_of(&flat), n, n * 16));
-    const TOL: f32 = 1.0 / 4096.0;
-    let (mut worst, mut ties) = (0.0f32, 0);
-    for (i, q) in queries.iter().enumerate() {
-        let near = cnj.k_nearest::<2>(*q);
-        let site = [
-            out[4 * i + 2].to_bits() as i32,
-            out[4 * i + 3].to_bits() as i32,
-        ];
-        let point = [out[4 * i], out[4 * i + 1]];
-        if site != near[0].site {
-            ties += 1;
-            assert!(
-                near[1].distance - near[0].distance <= 2.0 * TOL && site == near[1].site,
-                "query {q:?}: GPU site {site:?}, CPU {:?} (F2 − F1 = {:e})",
-                near[0].site,
-                near[1].distance - near[0].distance
-            );
-            continue;
-        }
-        let d = (point[0] - near[0].point[0])
-            .abs()
-            .max((point[1] - near[0].point[1]).abs());
-        worst = worst.max(d);
-        assert!(
-            d <= TOL,
-            "query {q:?}: GPU point {point:?}, CPU {:?}",
-            near[0].point
         );
-    }
-    eprintln!(
-        "cnj: largest point difference {worst:e} spacings; near-ties resolved the other way: {ties} of {n}"
-    );
+        let n = queries.len();
+        let out = floats(&run(g, &kernel, &bytes_of(&flat), n, n * 16));
+        const TOL: f32 = 1.0 / 4096.0;
+        let (mut worst, mut ties) = (0.0f32, 0);
+        for (i, q) in queries.iter().enumerate() {
+            let near = cnj.k_nearest::<2>(*q);
+            let site = [
+                out[4 * i + 2].to_bits() as i32,
+                out[4 * i + 3].to_bits() as i32,
+            ];
+            let point = [out[4 * i], out[4 * i + 1]];
+            if site != near[0].site {
+                ties += 1;
+                assert!(
+                    near[1].distance - near[0].distance <= 2.0 * TOL && site == near[1].site,
+                    "query {q:?}: GPU site {site:?}, CPU {:?} (F2 − F1 = {:e})",
+                    near[0].site,
+                    near[1].distance - near[0].distance
+                );
+                continue;
+            }
+            let d = (point[0] - near[0].point[0])
+                .abs()
+                .max((point[1] - near[0].point[1]).abs());
+            worst = worst.max(d);
+            assert!(
+                d <= TOL,
+                "query {q:?}: GPU point {point:?}, CPU {:?}",
+                near[0].point
+            );
+        }
+        eprintln!(
+            "cnj: largest point difference {worst:e} spacings; near-ties resolved the other way: {ties} of {n}"
+        );
+    });
 }
 
 /// Mask dims for the load tests: a width that is not a power of two, so the wrap takes the
@@ -643,17 +696,18 @@ fn check_mask_format<T: noisebake::Texel>(g: &Gpu, seed: u64) {
 
 #[test]
 fn masks_of_every_format_upload_and_load_as_the_runtime_reads_them() {
-    let Some(g) = gpu() else { return };
-    check_mask_format::<u8>(g, 10);
-    check_mask_format::<[u8; 2]>(g, 11);
-    check_mask_format::<[u8; 3]>(g, 12);
-    check_mask_format::<[u8; 4]>(g, 13);
-    check_mask_format::<u16>(g, 14);
-    check_mask_format::<[u16; 2]>(g, 15);
-    check_mask_format::<[u16; 3]>(g, 16);
-    check_mask_format::<[u16; 4]>(g, 17);
-    check_mask_format::<f32>(g, 18);
-    check_mask_format::<[f32; 2]>(g, 19);
-    check_mask_format::<[f32; 3]>(g, 20);
-    check_mask_format::<[f32; 4]>(g, 21);
+    Gpu::each_for_tests(|g| {
+        check_mask_format::<u8>(g, 10);
+        check_mask_format::<[u8; 2]>(g, 11);
+        check_mask_format::<[u8; 3]>(g, 12);
+        check_mask_format::<[u8; 4]>(g, 13);
+        check_mask_format::<u16>(g, 14);
+        check_mask_format::<[u16; 2]>(g, 15);
+        check_mask_format::<[u16; 3]>(g, 16);
+        check_mask_format::<[u16; 4]>(g, 17);
+        check_mask_format::<f32>(g, 18);
+        check_mask_format::<[f32; 2]>(g, 19);
+        check_mask_format::<[f32; 3]>(g, 20);
+        check_mask_format::<[f32; 4]>(g, 21);
+    });
 }

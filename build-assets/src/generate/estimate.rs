@@ -39,6 +39,13 @@ const FAST_VECTOR: f64 = 9.0;
 /// Rounds FAST typically runs before it converges.
 const FAST_ROUNDS: f64 = 40.0;
 
+/// Seconds per multiply-add of the sampler optimiser's scoring and updates.
+const SAMPLER_C: f64 = 1.0e-9;
+/// Seconds per (candidate, integrand, sample) of the sampler's candidate pool.
+const SAMPLER_POOL_C: f64 = 2.0e-9;
+/// Sweeps a sampler bake typically runs.
+const SAMPLER_SWEEPS: f64 = 20.0;
+
 /// Generations expected to take longer than this get an up-front message.
 pub const ANNOUNCE_SECONDS: f64 = 10.0;
 
@@ -72,6 +79,29 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
                 texels: n,
                 footprint: fp,
                 seconds: n as f64 * rounds * (FAST_PROPOSAL + fp as f64 * per) / speedup,
+            }
+        }
+        Kind::Sampler(p) => {
+            // Per pair and sweep, every pixel scores `tries` candidates (a dot product over
+            // the training values) and a share of them update the filter's support; pairs run
+            // on their own threads. Sweeps: what a bake typically needs before its gain is spent.
+            let crate::generate::sampler::Schedule {
+                pool,
+                tries,
+                training,
+                ..
+            } = crate::generate::sampler::Schedule::DEFAULT;
+            let pixels = (spec.dims[0] * spec.dims[1]) as f64;
+            let pairs = p.sample_dims.div_ceil(2) as f64;
+            let taps = p.spatial.taps().len() as f64;
+            let support = (2.0 * taps - 1.0).powi(2);
+            let per_sweep = pixels * training as f64 * (tries as f64 + 0.1 * support) * SAMPLER_C;
+            let pool = pool as f64 * training as f64 * (p.spp as f64 + 2.0) * SAMPLER_POOL_C;
+            let waves = (pairs / threads.max(1) as f64).ceil();
+            Estimate {
+                texels: n,
+                footprint: support as u64,
+                seconds: waves * (pool + SAMPLER_SWEEPS * per_sweep),
             }
         }
         Kind::White => Estimate {

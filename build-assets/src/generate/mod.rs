@@ -2,7 +2,7 @@
 //!
 //! The second stage of the pipeline (spec → **generate** → cache → codegen/export → bake):
 //! [`vac`] (void and cluster in N dimensions), [`fast`] (the FAST swap optimiser),
-//! [`baselines`] (white noise, per-slice and golden-ratio-animated 2D blue noise), [`estimate`]
+//! [`sampler`] (sampler tiles' keys), [`baselines`] (white noise, per-slice and golden-ratio-animated 2D blue noise), [`estimate`]
 //! (what a generation will cost, before it starts) and [`rng`] (the seeded generators). Every
 //! module reads the spec's parameter types; none is read by the spec.
 
@@ -10,6 +10,7 @@ pub mod baselines;
 pub mod estimate;
 pub mod fast;
 pub mod rng;
+pub mod sampler;
 pub mod vac;
 
 use crate::encoding::{encode_ranks, encode_unit};
@@ -132,10 +133,14 @@ pub fn generate(spec: &TextureSpec, progress: Progress) -> Texture {
             let out = crate::generate::fast::generate(params, dims, spec.seed, progress);
             crate::generate::fast::encode(params, dims, &out.samples, scalar)
         }
+        Kind::Sampler(params) => {
+            let (keys, _) = sampler::generate(params, dims[0], dims[1], spec.seed, progress);
+            keys.iter().flat_map(|k| k.to_le_bytes()).collect()
+        }
     };
     Texture {
         name: spec.name.clone(),
-        dims: dims.clone(),
+        dims: spec.storage_dims(),
         format: spec.format,
         data,
     }

@@ -81,6 +81,17 @@ pub enum Filter {
 }
 
 impl Filter {
+    /// The canonical text: a table with its `kind` first, e.g. `{kind=gauss,sigma=1.3435}`.
+    pub fn canonical(self) -> String {
+        use super::canonical::num;
+        match self {
+            Filter::None => "{kind=none}".to_string(),
+            Filter::Box { size } => format!("{{kind=box,size={size}}}"),
+            Filter::Gauss { sigma } => format!("{{kind=gauss,sigma={}}}", num(sigma)),
+            Filter::Binomial { order } => format!("{{kind=binomial,order={order}}}"),
+        }
+    }
+
     /// The normalised taps (they sum to 1), centred.
     pub fn taps(self) -> Vec<f64> {
         let t: Vec<f64> = match self {
@@ -264,12 +275,7 @@ impl FastParams {
     /// count or `converged`), `start`.
     pub fn canonical(&self) -> String {
         use super::canonical::num;
-        let spatial = match self.spatial {
-            Filter::None => "{kind=none}".to_string(),
-            Filter::Box { size } => format!("{{kind=box,size={size}}}"),
-            Filter::Gauss { sigma } => format!("{{kind=gauss,sigma={}}}", num(sigma)),
-            Filter::Binomial { order } => format!("{{kind=binomial,order={order}}}"),
-        };
+        let spatial = self.spatial.canonical();
         let temporal = match self.temporal {
             TemporalFilter::None => "{kind=none}".to_string(),
             TemporalFilter::Box { size } => format!("{{kind=box,size={size}}}"),
@@ -610,7 +616,7 @@ fn positive(
     Ok(x)
 }
 
-fn count(
+pub(super) fn count(
     key: &str,
     v: Option<Spanned<Value>>,
     default: i64,
@@ -631,7 +637,7 @@ fn count(
     }
 }
 
-fn spatial_filter(v: &Spanned<Value>) -> Result<Filter, SpecError> {
+pub(super) fn spatial_filter(v: &Spanned<Value>) -> Result<Filter, SpecError> {
     const K: &str = "spatial_filter";
     let (kind, t) = filter_table(K, v)?;
     Ok(match kind {

@@ -7,6 +7,7 @@
 pub mod canonical;
 mod error;
 pub mod fast;
+pub mod sampler;
 mod toml_file;
 pub mod vac;
 mod value;
@@ -18,6 +19,7 @@ pub use vac::{Group, splat_footprint};
 pub use value::{Span, Spanned, Table, Value};
 
 use fast::FastParams;
+use sampler::SamplerParams;
 
 /// Most texels a texture may have (64 Mi): void and cluster needs about
 /// [`WORK_BYTES_PER_TEXEL`] bytes of working memory per texel.
@@ -87,6 +89,10 @@ pub enum Kind {
     },
     /// A filter-adapted mask (FAST, Donnelly et al. 2024).
     Fast(FastParams),
+    /// A sampler tile: per-pixel keys of Owen-scrambled Sobol samples whose errors are blue
+    /// under a filter (Heitz et al. 2019); `dims` is the tile, stored as one 16-bit layer of
+    /// keys per sample dimension.
+    Sampler(SamplerParams),
 }
 
 impl Kind {
@@ -100,6 +106,7 @@ impl Kind {
             Kind::Independent2d { .. } => "independent2d",
             Kind::Golden { .. } => "golden",
             Kind::Fast(_) => "fast",
+            Kind::Sampler(_) => "sampler",
         }
     }
 }
@@ -131,7 +138,7 @@ impl Kind {
                 ]
             }
             Kind::Vac { groups, .. } => groups.clone(),
-            Kind::White | Kind::Fast(_) => Vec::new(),
+            Kind::White | Kind::Fast(_) | Kind::Sampler(_) => Vec::new(),
         }
     }
 }
@@ -142,6 +149,7 @@ pub const KINDS: &[&str] = &[
     "stbn",
     "vac",
     "fast",
+    "sampler",
     "white",
     "independent2d",
     "golden",
@@ -165,9 +173,19 @@ pub struct TextureSpec {
 }
 
 impl TextureSpec {
-    /// Total texel count.
+    /// The dims of the stored texture: `dims` itself, except for a sampler tile, whose
+    /// `[W, H]` holds one layer of keys per sample dimension (`[W, H, sample_dims]`).
+    pub fn storage_dims(&self) -> Vec<usize> {
+        let mut dims = self.dims.clone();
+        if let Kind::Sampler(p) = &self.kind {
+            dims.push(p.sample_dims as usize);
+        }
+        dims
+    }
+
+    /// Total texel count of the stored texture.
     pub fn texels(&self) -> usize {
-        self.dims.iter().product()
+        self.storage_dims().iter().product()
     }
 
     /// Size of the encoded texture in bytes.
@@ -190,6 +208,7 @@ impl TextureSpec {
         );
         let own = match &self.kind {
             Kind::Fast(p) => p.canonical(),
+            Kind::Sampler(p) => p.canonical(),
             k => vac::canonical(k).unwrap_or_default(),
         };
         if own.is_empty() {
@@ -415,6 +434,8 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
     };
     let format_span = f.get("format").and_then(|v| v.span);
     let format = match f.string("format")? {
+        // A sampler tile stores 16-bit keys; every other kind defaults to 8 bits.
+        None if kind_name == "sampler" => Format::U16,
         None => Format::U8,
         Some((s, span)) => Format::parse(s).ok_or_else(|| {
             SpecError::at(
@@ -444,6 +465,19 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         "fast" => {
             want_dims(2, 3)?;
             Kind::Fast(fast::parse(&mut f, &dims, format, format_span)?)
+        }
+        "sampler" => {
+            want_dims(2, 2)?;
+            if format != Format::U16 {
+                return Err(SpecError::at(
+                    "format",
+                    format_span,
+                    format!(
+                        "kind `sampler` stores 16-bit keys; `format` must be u16 (the default), got {format}"
+                    ),
+                ));
+            }
+            Kind::Sampler(sampler::parse(&mut f)?)
         }
         other => {
             let msg = if PLANNED_KINDS.contains(&other) {

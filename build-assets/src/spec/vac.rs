@@ -284,6 +284,6 @@ pub(super) fn canonical(kind: &Kind) -> Option<String> {
             )
         }
         Kind::White => String::new(),
-        Kind::Fast(_) => return None,
+        Kind::Fast(_) | Kind::Sampler(_) => return None,
     })
 }

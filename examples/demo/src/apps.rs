@@ -78,7 +78,8 @@ pub struct Dither {
 }
 
 impl Dither {
-    fn image(&self, x: usize, y: usize) -> [f32; 3] {
+    /// The RGB colour of pixel (x, y) before dithering, each channel in [0, 1].
+    pub fn colour(&self, x: usize, y: usize) -> [f32; 3] {
         let (u, v) = (
             x as f32 / self.size[0] as f32,
             y as f32 / self.size[1] as f32,
@@ -104,10 +105,10 @@ impl App for Dither {
     }
     fn reference(&self) -> Vec<f32> {
         let [w, h] = self.size;
-        (0..w * h).flat_map(|i| self.image(i % w, i / w)).collect()
+        (0..w * h).flat_map(|i| self.colour(i % w, i / w)).collect()
     }
     fn pixel(&self, noise: Noise, x: usize, y: usize, f: u32, out: &mut [f32]) {
-        let c = self.image(x, y);
+        let c = self.colour(x, y);
         for k in 0..3 {
             out[k] = if c[k] > noise.xi(x as i32, y as i32, f, k as u32) {
                 1.0

@@ -4,5 +4,6 @@
 pub mod bench;
 pub mod compare;
 pub mod fast;
+pub mod sampler;
 pub mod stochastic;
 pub mod vector;

@@ -382,7 +382,7 @@ fn peers(pts: &[[f32; 3]], xis: &[f32]) -> Vec<Row> {
         pts,
         xis,
         "perlin3",
-        |p, _| Perlin::new(1).sample(p),
+        |p, _| noise_runtime::stochastic::Perlin::new(1).sample(p),
         |p, _| Perlin.sample3(p),
         |p, _| p1.get_noise_3d(p[0], p[1], p[2]),
     ));
@@ -569,7 +569,7 @@ fn batch_rows(
     let forms: [(&str, Single, Batch, Batch); 2] = [
         (
             "perlin3",
-            |p, _| Perlin::new(1).sample(p),
+            |p, _| noise_runtime::stochastic::Perlin::new(1).sample(p),
             |p, _, o| {
                 Perlin::new(1).sample_batch(p, o).unwrap();
             },
