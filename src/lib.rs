@@ -138,6 +138,7 @@
 //! | `independent2d` | an independent 2D mask per slice | 2–4 | `sigma` (1.9), `initial_density` |
 //! | `golden` | one 2D mask animated by `t·φ` per frame | 3 | `sigma` (1.9), `initial_density` |
 //! | `fast` | FAST filter-adapted mask, 2D or 2D × time (Donnelly et al. 2024) | 2–3 | `sample_space` (`"scalar"`, `"circle"`, `"vec2"`…`"vec4"`, `"sphere"`, `"hemisphere"`, `"cosine_hemisphere"`), `distribution` (`"uniform"`, `"tent"`, `"gauss"`; scalar only), `spatial_filter` (`{ kind = "gauss", sigma = 1.3435 }`, `{ kind = "box", size = 5 }`, `{ kind = "binomial", order = 2 }`, `{ kind = "none" }`), `temporal_filter` (the filter the game runs; default for 3 dims `{ kind = "ema", alpha = 0.1, beta = 0 }`, a plain EMA at its steady state over the looping texture — `beta > 0` adds eq. 17's history rejection, as EA's published texture (`beta = 0.1`) — or `gauss`, `box`, `none`), `combine` (`"product"` or `{ separate = w }`), `start` (`"ign"`, the default for scalars: IGN's per-slice ranks; `"random"`), `iterations` (until converged) |
+//! | `sampler` | a sampler tile: per-pixel keys of Owen-scrambled Sobol samples whose errors are blue under a filter (Heitz et al. 2019); a `SamplerTile<W, H, SPP, D>` | 2 | `spp` (1; 1–64 samples per pixel per frame), `sample_dims` (2; 2–8), `spatial_filter` (`{ kind = "gauss", sigma = 1 }`; as `fast`'s), `frames` (1: the frames whose samples are optimised), `format` (`"u16"`, the only one) |
 //!
 //! One example per kind, in spec-file form (the macro takes the same as `key: value`):
 //!
@@ -189,7 +190,19 @@
 //! format = "u8x3"
 //! sample_space = "cosine_hemisphere"
 //! spatial_filter = { kind = "box", size = 5 }
+//!
+//! [[texture]]                 # 4 rays per pixel for occlusion, 4 dimensions, a Gaussian denoiser
+//! name = "AO_RAYS"
+//! kind = "sampler"
+//! dims = [128, 128]
+//! spp = 4
+//! sample_dims = 4
+//! spatial_filter = { kind = "gauss", sigma = 1.0 }
 //! ```
+//!
+//! A sampler tile is read as `AO_RAYS.sample(x, y, frame, i, d)` (dimension `d` of ray `i`, in
+//! `[0, 1)`), or `sample2` for a pair; on the GPU `nb_sampler_tile(keys, pixel, frame, i, d, spp)`
+//! over `AO_RAYS.keys()` uploaded as any `u16` mask.
 //!
 //! Unknown keys, wrong types and impossible values are errors that name the key and point at
 //! its line (spec file) or token (macro).

@@ -34,7 +34,9 @@
 //!
 //! The tests run on every Vulkan driver of the machine; CI runs them on two software drivers,
 //! Mesa's lavapipe (which does not fuse, and matched every one of them bit for bit) and
-//! Google's SwiftShader (which rounds as GPUs do), and they pass as built on an NVIDIA GPU.
+//! Google's SwiftShader (which fuses and approximates as GPUs do).
+//! Gradient noise coordinates must lie within `|p| < 2^22` (the runtime's fast split range;
+//! beyond it the GPU's `floor` and `i32` conversion no longer match the CPU's exact split).
 //!
 //! # What a game can rely on
 //!
@@ -51,9 +53,7 @@
 //!   and there a fused multiply-add decides). A game that needs the CPU's image exactly
 //!   computes the thresholded operand in fixed point, or uploads it; otherwise it can count on
 //!   a flip only within that distance of the threshold, never farther — which is what
-//!   `noisebake-gpu`'s scene test asserts, pixel by pixel. Gradient
-//! noise coordinates must lie within `|p| < 2^22` (the runtime's fast split range; beyond it the
-//! GPU's `floor` and `i32` conversion no longer match the CPU's exact split).
+//!   `noisebake-gpu`'s scene test asserts, pixel by pixel.
 //!
 //! # Using it
 //!
