@@ -15,8 +15,8 @@ pub struct Denoiser {
 /// Thresholds of the step integrands `φ_c(s) = [s < c]` (true integral `c`).
 pub const STEPS: [f64; 7] = [0.1, 0.25, 0.4, 0.5, 0.6, 0.75, 0.9];
 
-/// Separable wrapped convolution of one `w × h` frame.
-fn blur(img: &[f64], w: usize, h: usize, taps: &[f64]) -> Vec<f64> {
+/// Separable wrapped convolution of one `w × h` frame (a single tap copies it).
+pub(crate) fn blur(img: &[f64], w: usize, h: usize, taps: &[f64]) -> Vec<f64> {
     if taps.len() == 1 {
         return img.to_vec();
     }

@@ -95,31 +95,6 @@ pub fn integrands(edges: usize, smooth: usize, seed: u64) -> Vec<Integrand> {
 /// A sampler as measured: dimension `d` of sample `i` of pixel `(x, y)` in frame 0.
 pub type Lookup<'a> = &'a (dyn Fn(i32, i32, u32, u32) -> f32 + Sync);
 
-/// Separable toroidal filtering of a `n × n` image.
-fn filter(img: &[f64], n: usize, taps: &[f64]) -> Vec<f64> {
-    let r = (taps.len() / 2) as isize;
-    let pass = |src: &[f64], horizontal: bool| -> Vec<f64> {
-        let mut out = vec![0.0; n * n];
-        for y in 0..n {
-            for x in 0..n {
-                let mut s = 0.0;
-                for (k, &t) in taps.iter().enumerate() {
-                    let o = k as isize - r;
-                    let (xx, yy) = if horizontal {
-                        ((x as isize + o).rem_euclid(n as isize) as usize, y)
-                    } else {
-                        (x, (y as isize + o).rem_euclid(n as isize) as usize)
-                    };
-                    s += t * src[yy * n + xx];
-                }
-                out[y * n + x] = s;
-            }
-        }
-        out
-    };
-    pass(&pass(img, true), false)
-}
-
 /// RMSE after each of [`FILTERS`] (and the per-pixel RMSE, unfiltered, is the first) of the
 /// `spp`-sample estimates of `ints` with dimensions `pair` of `f`.
 pub fn measure(f: Lookup<'_>, spp: u32, pair: [u32; 2], ints: &[Integrand]) -> [f64; 4] {
@@ -144,11 +119,7 @@ pub fn measure(f: Lookup<'_>, spp: u32, pair: [u32; 2], ints: &[Integrand]) -> [
                 .collect();
             let mut s = [0.0; 4];
             for (k, t) in taps.iter().enumerate() {
-                let e = if t.len() == 1 {
-                    err.clone()
-                } else {
-                    filter(&err, n, t)
-                };
+                let e = crate::analysis::filtered::blur(&err, n, n, t);
                 s[k] = e.iter().map(|v| v * v).sum::<f64>();
             }
             s
