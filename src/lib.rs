@@ -63,6 +63,11 @@
 //! noisebake::noise_texture!(pub DITHER = blue2d { dims: [64, 64], seed: 1, sigma: 1.9 });
 //! ```
 //!
+//! The expansion names its types through `::noisebake`; a crate that renames the dependency or
+//! reaches noisebake through a re-export (a plugin wrapping it) says where with a leading
+//! `crate = PATH;`, as serde's derives take `crate = "…"`:
+//! `noise_texture!(crate = ::my_plugin::noisebake; DITHER = blue2d { … })`.
+//!
 //! Both give a typed view over bytes embedded with `include_bytes!` in a 16-byte aligned static
 //! (`Mask2<u8, 64, 64>`, `Mask3<u16, 64, 64, 16>`, `Mask4<f32, …>`, vector formats as
 //! `[u8; 3]` …). Bytes are little-endian, so every target reads the same values.
@@ -133,12 +138,12 @@
 //! | --- | --- | --- | --- |
 //! | `blue2d` | 2D void and cluster (Ulichney) | 2 | `sigma` (1.5), `initial_density` (0.1) |
 //! | `stbn` | spatiotemporal blue noise, 2D × 1D (Wolfe et al. 2022) | 3 | `sigma_xy` (1.9), `sigma_t` (1.9), `initial_density` (0.1), `histogram` (`"volume"` \| `"slice"`) |
-//! | `vac` | void and cluster over any grouping of 1–4 axes (STBN App. B) | 1–4 | `groups` (`[{ axes = all, sigma = 1.9 }]`), `toroidal` (true, or one bool per axis), `initial_density`, `histogram` |
+//! | `vac` | void and cluster over any grouping of 1–4 axes (STBN App. B) | 1–4 | `groups` (`[{ axes = all, sigma = 1.9 }]`), `toroidal` (true, or one bool per axis), `initial_density` (0.1), `histogram` (`"volume"` \| `"slice"`) |
 //! | `white` | independent uniform values | 1–4 | — |
 //! | `independent2d` | an independent 2D mask per slice | 2–4 | `sigma` (1.9), `initial_density` |
 //! | `golden` | one 2D mask animated by `t·φ` per frame | 3 | `sigma` (1.9), `initial_density` |
-//! | `fast` | FAST filter-adapted mask, 2D or 2D × time (Donnelly et al. 2024) | 2–3 | `sample_space` (`"scalar"`, `"circle"`, `"vec2"`…`"vec4"`, `"sphere"`, `"hemisphere"`, `"cosine_hemisphere"`), `distribution` (`"uniform"`, `"tent"`, `"gauss"`; scalar only), `spatial_filter` (`{ kind = "gauss", sigma = 1.3435 }`, `{ kind = "box", size = 5 }`, `{ kind = "binomial", order = 2 }`, `{ kind = "none" }`), `temporal_filter` (the filter the game runs; default for 3 dims `{ kind = "ema", alpha = 0.1, beta = 0 }`, a plain EMA at its steady state over the looping texture — `beta > 0` adds eq. 17's history rejection, as EA's published texture (`beta = 0.1`) — or `gauss`, `box`, `none`), `combine` (`"product"` or `{ separate = w }`), `start` (`"ign"`, the default for scalars: IGN's per-slice ranks; `"random"`), `iterations` (until converged) |
-//! | `sampler` | a sampler tile: per-pixel keys of Owen-scrambled Sobol samples whose errors are blue under a filter (Heitz et al. 2019); a `SamplerTile<W, H, SPP, D>` | 2 | `spp` (1; 1–64 samples per pixel per frame), `sample_dims` (2; 2–8), `spatial_filter` (`{ kind = "gauss", sigma = 1 }`; as `fast`'s), `frames` (1: the frames whose samples are optimised), `format` (`"u16"`, the only one) |
+//! | `fast` | FAST filter-adapted mask, 2D or 2D × time (Donnelly et al. 2024) | 2–3 | `sample_space` (`"scalar"`, `"circle"`, `"vec2"`…`"vec4"`, `"sphere"`, `"hemisphere"`, `"cosine_hemisphere"`), `distribution` (`"uniform"`, `"tent"`, `"gauss"`; scalar only), `spatial_filter` (`{ kind = "gauss", sigma = 1.3435 }`, `{ kind = "box", size = 5 }`, `{ kind = "binomial", order = 2 }`, `{ kind = "none" }`), `temporal_filter` (the filter the game runs; default for 3 dims `{ kind = "ema", alpha = 0.1, beta = 0 }`, a plain EMA at its steady state over the looping texture — `beta > 0` adds eq. 17's history rejection, as EA's published texture (`beta = 0.1`) — or `gauss`, `box`, `none`), `combine` (`"product"` or `{ separate = w }`), `start` (`"ign"`, the default for scalars: IGN's per-slice ranks; `"ign_r2"`, the default for the two-value spaces under a box filter, and `"rd_ign_r2"` under any other: the free pairs `sampler::ign_r2` / `sampler::rd_ign_r2` warped to the space; `"random"`, the default for `"vec3"` and `"vec4"`), `iterations` (until converged) |
+//! | `sampler` | a sampler tile: per-pixel keys of Owen-scrambled Sobol samples whose errors are blue under a filter (Heitz et al. 2019); a `SamplerTile<W, H, SPP, D>` | 2 | `spp` (1; 1–64 samples per pixel per frame), `sample_dims` (2; 2–8), `spatial_filter` (`{ kind = "gauss", sigma = 1 }`; `"box"`, `"binomial"`, `"none"` as `fast`'s), `frames` (1: the frames whose samples are optimised), `format` (`"u16"`, the only one) |
 //!
 //! One example per kind, in spec-file form (the macro takes the same as `key: value`):
 //!

@@ -22,6 +22,17 @@ noisebake::noise_texture!(
     }
 );
 
+/// A crate that reaches noisebake through a path of its own (a re-export, as a plugin wrapping
+/// noisebake gives its users) names that path with `crate = …`.
+mod my_plugin {
+    pub use ::noisebake as nb;
+}
+
+noisebake::noise_texture!(
+    crate = crate::my_plugin::nb;
+    BOXED = fast { dims: [8, 8, 2], seed: 3, spatial_filter: { kind: box, size: 3 }, iterations: 2 }
+);
+
 fn generated(body: &str) -> Vec<u8> {
     let s = parse_toml(&format!("[[texture]]\nname = \"T\"\n{body}"))
         .unwrap()
@@ -52,6 +63,14 @@ fn macro_tables_equal_the_generator_bytes() {
     let _: &noisebake::SamplerTile<16, 8, 4, 3> = &TILE;
     let v = TILE.sample(-1, 9, 2, 3, 2);
     assert!((0.0..1.0).contains(&v));
+    // Through a re-exported path, with a keyword (`box`) as a bare value.
+    let _: &my_plugin::nb::Mask3<u8, 8, 8, 2> = &BOXED;
+    assert_eq!(
+        BOXED.bytes(),
+        generated(
+            "kind = \"fast\"\ndims = [8, 8, 2]\nseed = 3\nspatial_filter = { kind = \"box\", size = 3 }\niterations = 2"
+        )
+    );
     // Typed views: dims and texel type are part of the item's type.
     let _: &noisebake::Mask3<u16, 16, 16, 4> = &STBN;
     assert!(GROUPS.get(-1, -1, -1, -1) > 0.0 && GROUPS.get(0, 0, 0, 0) < 1.0);

@@ -34,14 +34,19 @@ fn loss_falls_monotonically_and_matches_eq7() {
     let dims = [24, 24, 6];
     let out = run(&p, &dims, 3);
     assert!(out.curve.len() > 3);
-    let mut prev = out.initial_loss;
+    let mut prev = 0.0;
     for pt in &out.curve {
-        assert!(pt.loss <= prev, "loss rose: {prev} -> {}", pt.loss);
-        prev = pt.loss;
+        assert!(
+            pt.decrease >= prev,
+            "loss rose: decrease {prev} -> {}",
+            pt.decrease
+        );
+        prev = pt.decrease;
     }
     let exact = fast::loss(&p, &dims, &out.samples);
-    assert!((exact - out.loss()).abs() < 1e-9 * exact.abs());
-    assert!(exact < out.initial_loss);
+    let start = fast::loss(&p, &dims, &fast::initial_samples(&p, &dims, 3));
+    assert!((start - exact - out.decrease()).abs() < 1e-9 * exact.abs());
+    assert!(exact < start);
 }
 
 #[test]

@@ -10,11 +10,17 @@ use build_assets::codegen;
 use build_assets::spec::{self, Span, Spanned, Table, Value};
 use proc_macro2::{Span as PSpan, TokenStream};
 use quote::quote;
+use syn::ext::IdentExt;
 use syn::parse::{Parse, ParseStream};
 use syn::{Ident, Token, Visibility, braced, bracketed};
 
-/// Parsed input: `vis NAME = kind { key: value, … }`.
+/// The path an expansion names the facade by when the input does not say `crate = …`.
+const DEFAULT_CRATE: &str = "::noisebake";
+
+/// Parsed input: `(crate = path;)? vis NAME = kind { key: value, … }`.
 struct Input {
+    /// The path the expansion names the facade by (`::noisebake` unless `crate = …` says).
+    krate: String,
     vis: Visibility,
     name: Ident,
     kind: Ident,
@@ -65,8 +71,9 @@ impl Ctx {
             input.parse::<Token![-]>()?;
         }
         let sign = if neg { -1.0 } else { 1.0 };
-        let lit: syn::Lit = if input.peek(Ident) {
-            let id: Ident = input.parse()?;
+        // `Ident::parse_any`: a bare word may be a Rust keyword (`kind: box`, `type: ...`).
+        let lit: syn::Lit = if input.peek(Ident::peek_any) && !input.peek(syn::LitBool) {
+            let id: Ident = Ident::parse_any(input)?;
             let v = match id.to_string().as_str() {
                 "true" => Value::Bool(true),
                 "false" => Value::Bool(false),
@@ -134,6 +141,20 @@ impl Ctx {
 
 impl Parse for Input {
     fn parse(input: ParseStream) -> syn::Result<Self> {
+        let krate = if input.peek(Token![crate]) && input.peek2(Token![=]) {
+            input.parse::<Token![crate]>()?;
+            input.parse::<Token![=]>()?;
+            let path: syn::Path = input.parse()?;
+            input.parse::<Token![;]>().map_err(|e| {
+                syn::Error::new(
+                    e.span(),
+                    "expected `;` after the crate path: `noise_texture!(crate = my::noisebake; NAME = kind { … })`",
+                )
+            })?;
+            quote!(#path).to_string().replace(' ', "")
+        } else {
+            DEFAULT_CRATE.to_string()
+        };
         let vis: Visibility = input.parse()?;
         let name: Ident = input.parse()?;
         input.parse::<Token![=]>()?;
@@ -146,6 +167,7 @@ impl Parse for Input {
             input.parse::<Token![;]>()?;
         }
         Ok(Input {
+            krate,
             vis,
             name,
             kind,
@@ -160,7 +182,7 @@ impl Parse for Input {
 /// # Grammar
 ///
 /// ```text
-/// noise_texture!( VISIBILITY? NAME = KIND { KEY: VALUE, … } ;? )
+/// noise_texture!( (crate = PATH ;)? VISIBILITY? NAME = KIND { KEY: VALUE, … } ;? )
 ///
 /// VALUE := number | -number | "string" | identifier | true | false
 ///        | [ VALUE, … ]                 (arrays, e.g. dims: [64, 64, 16])
@@ -170,8 +192,13 @@ impl Parse for Input {
 /// `NAME` is the item's name (the spec's `name`), `KIND` the spec's `kind`, and the keys are the
 /// spec keys of that kind (the table on the `noisebake` crate's front page). `=` is accepted in
 /// place of `:`; a bare identifier is a string (`format: u16` is `format = "u16"`). The item
-/// is `VISIBILITY static NAME: Mask2<…> | Mask3<…> | Mask4<…>`, its texel type following
-/// `format`.
+/// is `VISIBILITY static NAME: Mask2<…> | Mask3<…> | Mask4<…>` (or `SamplerTile<…>`), its
+/// texel type following `format`.
+///
+/// The expansion names its types through `::noisebake`. A crate that renames the dependency
+/// (`nb = { package = "noisebake", … }`) or re-exports it (a plugin of its own that wraps
+/// noisebake) says where the facade is with a leading `crate = PATH;`, as serde's and Bevy's
+/// derives take `crate = "…"`: `noise_texture!(crate = ::my_plugin::noisebake; DITHER = blue2d { … })`.
 ///
 /// # Examples
 ///
@@ -215,6 +242,7 @@ pub fn noise_texture(tokens: proc_macro::TokenStream) -> proc_macro::TokenStream
 
 fn expand(input: Input) -> TokenStream {
     let Input {
+        krate,
         vis,
         name,
         kind,
@@ -255,7 +283,7 @@ fn expand(input: Input) -> TokenStream {
                 .unwrap_or(name.span());
             let err = syn::Error::new(at, e.message).to_compile_error();
             // A typed placeholder so code using the texture does not add errors of its own.
-            let ph: TokenStream = fallback_placeholder(&table, &name.to_string(), &vis_s)
+            let ph: TokenStream = fallback_placeholder(&table, &name.to_string(), &vis_s, &krate)
                 .parse()
                 .unwrap_or_default();
             return quote!(#err #ph);
@@ -263,7 +291,7 @@ fn expand(input: Input) -> TokenStream {
     };
     let fail = |msg: String| {
         let err = syn::Error::new(name.span(), format!("noisebake: {msg}")).to_compile_error();
-        let ph: TokenStream = codegen::placeholder(&s, &vis_s, "::noisebake")
+        let ph: TokenStream = codegen::placeholder(&s, &vis_s, &krate)
             .parse()
             .unwrap_or_default();
         quote!(#err #ph)
@@ -287,7 +315,7 @@ fn expand(input: Input) -> TokenStream {
         eprintln!("warning: noisebake: {w}");
     }
     let code = match entry {
-        None => codegen::placeholder(&s, &vis_s, "::noisebake"),
+        None => codegen::placeholder(&s, &vis_s, &krate),
         Some(entry) => {
             let Some(path) = entry.path else {
                 return fail(format!(
@@ -303,13 +331,7 @@ fn expand(input: Input) -> TokenStream {
                     build_assets::bake::announce(&s.name, &what, entry.seconds, dir)
                 );
             }
-            codegen::item(
-                &s,
-                &vis_s,
-                &path.display().to_string(),
-                HEADER,
-                "::noisebake",
-            )
+            codegen::item(&s, &vis_s, &path.display().to_string(), HEADER, &krate)
         }
     };
     code.parse().unwrap_or_else(|e| {
@@ -320,7 +342,7 @@ fn expand(input: Input) -> TokenStream {
 
 /// The placeholder item of an invalid spec: the view type the spec most likely meant (its `dims`
 /// and `format` when those parse, else a 1×1 u8 mask), zero bytes, `dead_code` allowed.
-fn fallback_placeholder(table: &spec::Table, name: &str, vis: &str) -> String {
+fn fallback_placeholder(table: &spec::Table, name: &str, vis: &str, krate: &str) -> String {
     let dims = table
         .iter()
         .find(|(k, _)| k.value == "dims")
@@ -353,6 +375,98 @@ fn fallback_placeholder(table: &spec::Table, name: &str, vis: &str) -> String {
     };
     format!(
         "#[allow(dead_code)] {}",
-        codegen::placeholder(&s, vis, "::noisebake")
+        codegen::placeholder(&s, vis, krate)
     )
+}
+
+/// The grammar on its own: token streams in, the parsed input out, with no cache and no
+/// generation (the expansion is tested through `tests/ui` and the workspace's pipeline tests).
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(tokens: TokenStream) -> syn::Result<Input> {
+        syn::parse2::<Input>(tokens)
+    }
+
+    fn keys(t: &Table) -> Vec<(&str, &Value)> {
+        t.iter()
+            .map(|(k, v)| (k.value.as_str(), &v.value))
+            .collect()
+    }
+
+    #[test]
+    fn the_facade_is_noisebake_unless_the_input_names_another() {
+        let i = parse(quote!(pub D = blue2d { dims: [64, 64] })).unwrap();
+        assert_eq!(i.krate, "::noisebake");
+        let i = parse(quote!(crate = ::my_plugin::noisebake; pub D = blue2d { dims: [64, 64] }))
+            .unwrap();
+        assert_eq!(i.krate, "::my_plugin::noisebake");
+        assert_eq!(i.name, "D");
+        assert_eq!(i.kind, "blue2d");
+        let i = parse(quote!(crate = nb; D = white { dims: [4, 4] };)).unwrap();
+        assert_eq!(i.krate, "nb");
+        let i =
+            parse(quote!(crate = crate::reexports::noisebake; D = white { dims: [4, 4] })).unwrap();
+        assert_eq!(i.krate, "crate::reexports::noisebake");
+    }
+
+    #[test]
+    fn a_crate_path_needs_its_semicolon_and_a_path() {
+        let e = parse(quote!(crate = nb D = white { dims: [4, 4] }))
+            .err()
+            .expect("missing `;` is an error");
+        assert!(
+            e.to_string().contains("expected `;` after the crate path"),
+            "{e}"
+        );
+        assert!(parse(quote!(crate = ; D = white { dims: [4, 4] })).is_err());
+        assert!(parse(quote!(crate = "nb"; D = white { dims: [4, 4] })).is_err());
+    }
+
+    #[test]
+    fn values_keys_and_visibility_parse_as_the_grammar_says() {
+        let i = parse(quote!(pub(crate) F = fast {
+            dims: [32, 32, 16],
+            format = u16,
+            spatial_filter: { kind: box, size: 5 },
+            sigma: -1.5,
+            histogram: "slice",
+            wrap: true,
+        }))
+        .unwrap();
+        let vis = &i.vis;
+        assert_eq!(quote!(#vis).to_string(), "pub (crate)");
+        let k = keys(&i.table);
+        assert_eq!(k[0].0, "dims");
+        assert!(matches!(k[0].1, Value::Array(a) if a.len() == 3));
+        assert_eq!(k[1], ("format", &Value::Str("u16".into())));
+        assert!(matches!(k[2].1, Value::Table(t) if t.len() == 2));
+        assert_eq!(k[3], ("sigma", &Value::Float(-1.5)));
+        assert_eq!(k[4], ("histogram", &Value::Str("slice".into())));
+        assert_eq!(k[5], ("wrap", &Value::Bool(true)));
+        // Every key and value has a span the errors can point at.
+        assert!(
+            i.table
+                .iter()
+                .all(|(k, v)| k.span.is_some() && v.span.is_some())
+        );
+    }
+
+    #[test]
+    fn malformed_input_is_an_error_not_a_panic() {
+        for bad in [
+            quote!(D = blue2d),
+            quote!(D blue2d { dims: [4, 4] }),
+            quote!(D = blue2d { dims: [4, 4] } extra),
+            quote!(D = blue2d { dims: 'c' }),
+            quote!(
+                D = blue2d {
+                    dims: 99999999999999999999
+                }
+            ),
+        ] {
+            assert!(parse(bad.clone()).is_err(), "{bad}");
+        }
+    }
 }

@@ -150,7 +150,7 @@ impl RoundNoStd for f32 {
 /// `x = m · 2^e` with `m ∈ [√½, √2)` by integer steps on the bits, then `ln m = u · P(u)` for
 /// `u = m − 1`, `P` a degree-7 Chebyshev fit to `ln(1 + u)/u` evaluated in Estrin's scheme:
 /// no division and no select, so a chain of 8 dependent operations after the bits (smooth
-/// Voronoi ends in one, and the atanh series with its division took 23 ns of its 78).
+/// Voronoi ends in one, and the atanh series with its division was a large share of its time).
 #[inline(always)]
 pub fn ln(x: f32) -> f32 {
     if x.is_nan() || x < f32::MIN_POSITIVE {
@@ -287,9 +287,9 @@ pub(crate) fn split_in_range(x: f32) -> (i32, f32) {
 ///
 /// A macro that writes `body` into both branches, rather than a function returning the split
 /// or taking the kernel as a closure: a returned split merges the two paths into one value,
-/// which LLVM passed through the stack (Worley F1 took 41 ns instead of 24), and a closure
-/// that the cold path also calls keeps its captures (seed, ξ) in memory on the hot path too
-/// (the 3D Perlin estimator took 9.8 ns instead of 8.6).
+/// which LLVM passed through the stack (Worley F1 measured much slower), and a closure that
+/// the cold path also calls keeps its captures (seed, ξ) in memory on the hot path too (the
+/// 3D Perlin estimator measured slower).
 macro_rules! on_cells {
     ($v:expr, |$cell:ident, $f:ident| $body:expr) => {{
         let v: $crate::lanes::F4 = $v;

@@ -24,6 +24,15 @@ pub fn fnv128(bytes: &[u8]) -> u128 {
 
 /// The cache key of a spec: 32 hex digits, all 128 bits of one hash.
 pub fn key(spec: &TextureSpec) -> String {
-    let canon = format!("v{ALGORITHM_VERSION};{}", spec.canonical());
-    format!("{:032x}", fnv128(canon.as_bytes()))
+    key_of(ALGORITHM_VERSION, &spec.canonical())
+}
+
+/// The key formula, the one place it is written: FNV-1a 128 of `v{version};{canonical}` as 32
+/// lowercase hex digits. [`key`] applies it to this generator's version; the tidy pass applies
+/// it to older versions to tell a stale entry from a corrupt one.
+pub fn key_of(version: u32, canonical: &str) -> String {
+    format!(
+        "{:032x}",
+        fnv128(format!("v{version};{canonical}").as_bytes())
+    )
 }

@@ -20,7 +20,8 @@
 //!   to itself ([`crate::spec::canonical::to_spec`]: another canonical format), is stale —
 //!   intact, but no build of this version reads it.
 
-use super::{Corrupt, fnv128};
+use super::Corrupt;
+use super::key::key_of;
 use crate::generate::ALGORITHM_VERSION;
 use std::fs::{self, File};
 use std::io;
@@ -120,10 +121,7 @@ pub fn check(key: &str, bytes: &[u8]) -> (Option<String>, Status) {
             Status::Corrupt("its spec is not UTF-8 text".to_string()),
         );
     };
-    let this = format!(
-        "{:032x}",
-        fnv128(format!("v{ALGORITHM_VERSION};{canon}").as_bytes())
-    );
+    let this = key_of(ALGORITHM_VERSION, canon);
     let current = || crate::spec::canonical::to_spec(canon).is_ok_and(|s| s.canonical() == canon);
     let status = if this == key {
         // Keyed for this version, but written in another canonical format (before 0.1.0):
@@ -133,9 +131,7 @@ pub fn check(key: &str, bytes: &[u8]) -> (Option<String>, Status) {
         } else {
             Status::Stale
         }
-    } else if (0..ALGORITHM_VERSION)
-        .any(|v| format!("{:032x}", fnv128(format!("v{v};{canon}").as_bytes())) == key)
-    {
+    } else if (0..ALGORITHM_VERSION).any(|v| key_of(v, canon) == key) {
         Status::Stale
     } else {
         Status::Corrupt("its file name is not the key of the spec it holds".to_string())

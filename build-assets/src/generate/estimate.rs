@@ -25,19 +25,21 @@ pub struct Estimate {
 }
 
 /// Seconds per placed texel, fixed part.
-const VAC_A: f64 = 9e-7;
+const VAC_A: f64 = 4.0e-7;
 /// Seconds per energy update.
-const VAC_B: f64 = 8e-10;
+const VAC_B: f64 = 3.6e-10;
 /// Exponent of the slowdown once the energy field outgrows the caches.
 const VAC_SPILL: f64 = 0.55;
-/// CPU seconds per coupled pair and round, scalar FAST.
-const FAST_C: f64 = 1.9e-10;
+/// CPU seconds per coupled pair and round, scalar FAST (the screen gives up on most proposals
+/// after a small share of a long footprint).
+const FAST_C: f64 = 7.4e-11;
 /// CPU seconds per proposal (one per texel and round), whatever the footprint.
-const FAST_PROPOSAL: f64 = 2.5e-7;
-/// Vector sample spaces cost this much more per pair (a distance in 2–4 dimensions).
-const FAST_VECTOR: f64 = 9.0;
-/// Rounds FAST typically runs before it converges.
-const FAST_ROUNDS: f64 = 40.0;
+const FAST_PROPOSAL: f64 = 5.0e-7;
+/// Vector sample spaces cost this much more per pair (a distance in 2–4 dimensions, and their
+/// short footprints are walked further before the screen decides).
+const FAST_VECTOR: f64 = 14.0;
+/// Rounds FAST typically runs before its gain is spent (`optimize::CONVERGED`).
+const FAST_ROUNDS: f64 = 18.0;
 
 /// Seconds per multiply-add of the sampler optimiser's scoring and updates.
 const SAMPLER_C: f64 = 1.0e-9;
@@ -159,7 +161,7 @@ mod tests {
         assert!(big.seconds > 30.0 * small.seconds);
         assert!(wide.footprint > small.footprint && wide.seconds > small.seconds);
         let fast = estimate(&spec(
-            "kind = \"fast\"\ndims = [128, 128, 64]\nspatial_filter = { kind = \"gauss\", sigma = 1.3435 }\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }",
+            "kind = \"fast\"\ndims = [256, 256, 64]\nspatial_filter = { kind = \"gauss\", sigma = 1.3435 }\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }",
         ));
         assert!(fast.seconds > ANNOUNCE_SECONDS, "{fast}");
         assert!(format!("{fast}").contains("texels"));

@@ -65,7 +65,7 @@ impl F4 {
     /// memory (a `[f32; 3]` argument of a function that is not inlined) was stored in those
     /// two pieces; left to itself, LLVM read it as 4 + 8 bytes, and a load that spans two
     /// stores cannot be forwarded from them: a stall of every call (3D Perlin noise through a
-    /// function pointer took 31 ns instead of 10).
+    /// function pointer measured about three times slower).
     #[inline(always)]
     pub(crate) fn from3(p: [f32; 3]) -> F4 {
         let p = &p;

@@ -117,15 +117,14 @@ impl Narrowing {
 /// computed before the first decision is known: the interval of the second decision is one of
 /// two, both products of the weights alone. That takes a multiply and a handful of dependent
 /// moves off the chain from the weights to the corner, where the 2D estimator spends its time
-/// waiting (it made the 2D estimator 1.25x faster). In 3D the same for the third decision, whose
-/// interval is one of four, measured slower than the sequential form: more work than the chain
-/// saves. Measured again on an AMD Zen 5 core, where the 3D estimator takes 8.5 ns against the
-/// deterministic form's 9.3: speculating the third decision's four cuts took 9.3 ns, the second
-/// decision's two only 9.6 ns. The chain still costs the estimator most of its lead there: an
-/// experiment that replaced the three decisions by independent compares (wrong, but with the
-/// same hashing and dot product) took 6.0 ns, so no form of the decisions brings the 3D
-/// estimator to the paper's 1.9× there. Returns the masks of the two decisions (all ones:
-/// upper side).
+/// waiting (the 2D estimator measured faster with it). In 3D the same for the third decision,
+/// whose interval is one of four, measured slower than the sequential form: more work than the
+/// chain saves, on an Intel and an AMD Zen 5 core alike. The chain still costs the 3D estimator
+/// most of its lead over the deterministic form: an experiment that replaced the three decisions
+/// by independent compares (wrong, but with the same hashing and dot product) ran far faster,
+/// so no form of the decisions reaches the paper's speed-up there (`noisebake report
+/// stochastic` measures both forms). Returns the masks of the two decisions (all ones: upper
+/// side).
 #[inline(always)]
 pub(crate) fn fresh_corner2(xi: f32, t: [f32; 2]) -> [u32; 2] {
     const ONE: u64 = 1 << FIXED_BITS;

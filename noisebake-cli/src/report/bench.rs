@@ -4,11 +4,18 @@
 //! is made for. It fits the exponent of time against texels per kind (1 is linear) and writes
 //! the table as JSON and a log-log plot to the report folder; the README's bake times come
 //! from it.
+//!
+//! For each FAST case at its largest size it also runs the optimiser on past its stopping
+//! rule to the round cap ([`Curve`]): the loss's decrease against time, the round where the
+//! bake stopped, and the error there and at the cap, which is the trade the stopping rule
+//! ([`build_assets::generate::fast::optimize::CONVERGED`]) makes.
 
 use crate::export::plot::{Labels, PALETTE, Series, line_plot};
 use crate::report::compare::{loss_params, measure};
+use crate::report::vector::{self, Space};
 use build_assets::generate::estimate::estimate_with_threads;
-use build_assets::spec::TextureSpec;
+use build_assets::generate::fast::{self, MAX_ROUNDS, optimize::CONVERGED};
+use build_assets::spec::{Kind, TextureSpec};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
@@ -28,9 +35,28 @@ pub struct Row {
     pub seconds: f64,
     /// The up-front estimate for this many threads, seconds.
     pub estimate: f64,
-    /// For FAST scalar masks: RMSE after Gaussian σ 1.3435 × plain EMA (α 0.1), the filter the
-    /// mask is made for (`report fast`'s measure).
+    /// For FAST masks, the error after the filter the mask is made for: scalar masks, RMSE of
+    /// step integrands after Gaussian σ 1.3435 × plain EMA (α 0.1, `report fast`'s measure);
+    /// the cosine-hemisphere mask, RMSE of visibility integrands after box 5×5 × plain EMA
+    /// (`report vector`'s measure).
     pub rmse: Option<f64>,
+}
+
+/// A FAST case at its largest size, on 2 threads, run on past the bake's stopping rule to the
+/// round cap.
+#[derive(Clone, Debug, Serialize)]
+pub struct Curve {
+    /// The case.
+    pub case: String,
+    /// Texture dimensions.
+    pub dims: Vec<usize>,
+    /// `(seconds, decrease of the loss since the start)` after each round.
+    pub points: Vec<(f64, f64)>,
+    /// The round after which the bake stops (1-based): the first whose gain is at most
+    /// `CONVERGED` of the decrease so far.
+    pub stop_round: usize,
+    /// The error at the round cap (the bake's error is its row's `rmse`).
+    pub rmse_at_cap: f64,
 }
 
 /// A kind's fit: `seconds ∝ texels^exponent` over its three sizes, per thread count.
@@ -51,6 +77,8 @@ pub struct Bench {
     pub rows: Vec<Row>,
     /// Exponents per case and thread count.
     pub fits: Vec<Fit>,
+    /// Each FAST case run on to the round cap.
+    pub curves: Vec<Curve>,
 }
 
 /// The cases: `(name, TOML body without dims, sizes)`.
@@ -116,14 +144,7 @@ pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<Bench, S
                 let start = Instant::now();
                 let tex = pool.install(|| build_assets::generate(&s, &mut |_, _| {}));
                 let seconds = start.elapsed().as_secs_f64();
-                let rmse = (name.starts_with("fast scalar")).then(|| {
-                    let d = [dims[0], dims[1], dims[2]];
-                    let fps = [
-                        loss_params(0.0).footprint(dims),
-                        loss_params(0.1).footprint(dims),
-                    ];
-                    measure("", &tex.values(), d, &fps).rmse_gauss
-                });
+                let rmse = fast_error(name, dims, &tex.values());
                 let row = Row {
                     case: name.to_string(),
                     dims: dims.clone(),
@@ -136,6 +157,13 @@ pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<Bench, S
                 log(&describe(&row));
                 rows.push(row);
             }
+        }
+    }
+    let mut curves = Vec::new();
+    for (name, body, sizes) in cases(full) {
+        let dims = sizes.last().expect("sizes");
+        if let Some(c) = run_on(name, &spec(body, dims)?, log)? {
+            curves.push(c);
         }
     }
     let mut fits = Vec::new();
@@ -163,7 +191,7 @@ pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<Bench, S
         }
     }
     std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
-    let bench = Bench { rows, fits };
+    let bench = Bench { rows, fits, curves };
     let json = serde_json::to_string_pretty(&bench).map_err(|e| e.to_string())?;
     std::fs::write(out.join("bench.json"), json).map_err(|e| e.to_string())?;
     line_plot(
@@ -176,7 +204,118 @@ pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<Bench, S
         },
         true,
     )?;
+    plot_curves(&bench.curves, &out.join("bench_fast_curves.png"))?;
     Ok(bench)
+}
+
+/// The error of a FAST bench case after the filter it is made for ([`Row::rmse`]); `None` for
+/// other kinds.
+fn fast_error(case: &str, dims: &[usize], values: &[f64]) -> Option<f64> {
+    if case.starts_with("fast scalar") {
+        let d = [dims[0], dims[1], dims[2]];
+        let fps = [
+            loss_params(0.0).footprint(dims),
+            loss_params(0.1).footprint(dims),
+        ];
+        Some(measure("", values, d, &fps).rmse_gauss)
+    } else if case.starts_with("fast cosine hemisphere") && dims == vector::DIMS {
+        let dirs: Vec<[f32; 3]> = values
+            .chunks_exact(3)
+            .map(|c| vector::unit_from_unorm([c[0], c[1], c[2]]))
+            .collect();
+        let box5 = vector::measure(&dirs, Space::CosineHemisphere);
+        Some(box5[0].rmse)
+    } else {
+        None
+    }
+}
+
+/// Runs a FAST case on 2 threads to the round cap ([`Curve`]); `None` for other kinds.
+fn run_on(case: &str, s: &TextureSpec, log: &mut dyn FnMut(&str)) -> Result<Option<Curve>, String> {
+    let Kind::Fast(params) = &s.kind else {
+        return Ok(None);
+    };
+    let mut capped = params.clone();
+    capped.iterations = Some(MAX_ROUNDS);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .map_err(|e| e.to_string())?;
+    // A threshold of 0 never stops: the same rounds as the bake, then on to the cap.
+    let out =
+        pool.install(|| fast::generate_within(&capped, &s.dims, s.seed, None, 0.0, &mut |_, _| {}));
+    let points: Vec<(f64, f64)> = out.curve.iter().map(|p| (p.seconds, p.decrease)).collect();
+    let stop_round = stop_round(&points);
+    let scalar = s.format.scalar;
+    let bytes = fast::encode(&capped, &s.dims, &out.samples, scalar);
+    let values = build_assets::Texture {
+        name: s.name.clone(),
+        dims: s.storage_dims(),
+        format: s.format,
+        data: bytes,
+    }
+    .values();
+    let rmse_at_cap = fast_error(case, &s.dims, &values).unwrap_or(f64::NAN);
+    log(&format!(
+        "  {case} {:?}: the bake stops after round {stop_round} of {}; run on to the cap: {:.2} s, rmse {rmse_at_cap:.5}",
+        s.dims,
+        points.len(),
+        points.last().map_or(0.0, |p| p.0)
+    ));
+    Ok(Some(Curve {
+        case: case.to_string(),
+        dims: s.dims.clone(),
+        points,
+        stop_round,
+        rmse_at_cap,
+    }))
+}
+
+/// The round (1-based) after which the stopping rule ends a run with these `(seconds,
+/// decrease)` points: the first whose gain is at most [`CONVERGED`] of the decrease so far (the
+/// optimiser's test, in the same terms), or the last.
+pub fn stop_round(points: &[(f64, f64)]) -> usize {
+    let mut prev = 0.0;
+    for (r, &(_, d)) in points.iter().enumerate() {
+        if d - prev <= CONVERGED * d {
+            return r + 1;
+        }
+        prev = d;
+    }
+    points.len()
+}
+
+/// Loss decrease (as a share of the decrease at the cap) against seconds, one line per case.
+fn plot_curves(curves: &[Curve], path: &Path) -> Result<(), String> {
+    let series: Vec<Series> = curves
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            let end = c.points.last().map_or(1.0, |p| p.1).max(f64::MIN_POSITIVE);
+            Series {
+                label: format!(
+                    "{} {:?} (bake stops after round {})",
+                    c.case, c.dims, c.stop_round
+                ),
+                color: PALETTE[k % PALETTE.len()],
+                points: c.points.iter().map(|&(t, d)| (t, d / end)).collect(),
+            }
+        })
+        .collect();
+    if series.is_empty() {
+        return Ok(());
+    }
+    line_plot(
+        path,
+        &series,
+        &Labels {
+            title: "FAST: loss decrease against time, run on to the round cap".into(),
+            x: "seconds (2 threads)".into(),
+            y: "share of the decrease at the cap".into(),
+        },
+        false,
+    )
+    .map(|_| ())
 }
 
 /// One line of the table.
@@ -212,6 +351,26 @@ mod tests {
         assert!((exponent(&pts) - 1.3).abs() < 1e-9);
         let linear: Vec<(f64, f64)> = [1.0, 2.0, 8.0].iter().map(|&x| (x, 5.0 * x)).collect();
         assert!((exponent(&linear) - 1.0).abs() < 1e-9);
+    }
+
+    /// The bench reads the stop from a run-on curve: it must stop where the optimiser does.
+    #[test]
+    fn the_stop_read_off_a_curve_is_the_bakes() {
+        let s = spec("kind = \"fast\"", &[16, 16, 8]).unwrap();
+        let Kind::Fast(p) = &s.kind else { panic!() };
+        let baked = fast::generate(p, &s.dims, s.seed, &mut |_, _| {});
+        let mut capped = p.clone();
+        capped.iterations = Some(MAX_ROUNDS);
+        let on = fast::generate_within(&capped, &s.dims, s.seed, None, 0.0, &mut |_, _| {});
+        let pts: Vec<(f64, f64)> = on.curve.iter().map(|p| (p.seconds, p.decrease)).collect();
+        assert!(
+            baked.curve.len() < on.curve.len(),
+            "the rule stops before the cap here"
+        );
+        assert_eq!(stop_round(&pts), baked.curve.len());
+        for (a, b) in baked.curve.iter().zip(&on.curve) {
+            assert_eq!(a.decrease, b.decrease);
+        }
     }
 
     #[test]

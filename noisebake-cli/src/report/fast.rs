@@ -165,15 +165,13 @@ fn paper_run(
     };
     let start = Instant::now();
     let out = pool.install(|| fast::paper_baseline(params, dims, 1, schedule, &mut |_, _| {}));
-    let final_loss = out.loss();
+    let (initial_loss, final_loss) = (measured(out.initial_loss), measured(out.loss()));
     let run = PaperRun {
         gamma_max,
         iterations,
         seconds: start.elapsed().as_secs_f64(),
         final_loss,
-        curve: std::iter::once((0.0, out.initial_loss))
-            .chain(out.curve.iter().map(|p| (p.seconds, p.loss)))
-            .collect(),
+        curve: out.loss_curve().unwrap_or_default(),
         ours_seconds_to_reach: ours
             .curve
             .iter()
@@ -183,7 +181,7 @@ fn paper_run(
     log(&format!(
         "  paper schedule, gamma <= {gamma_max}: {iterations} iterations in {:.1} s, loss {:.1} -> {:.1}; ours {}",
         run.seconds,
-        out.initial_loss,
+        initial_loss,
         final_loss,
         match run.ours_seconds_to_reach {
             Some(t) => format!("reached it after {t:.1} s"),
@@ -250,14 +248,17 @@ fn timed_within(
         case: case.to_string(),
         threads,
         seconds,
-        initial_loss: out.initial_loss,
-        final_loss: out.loss(),
+        initial_loss: measured(out.initial_loss),
+        final_loss: measured(out.loss()),
         rounds: out.curve.len(),
-        curve: std::iter::once((0.0, out.initial_loss))
-            .chain(out.curve.iter().map(|p| (p.seconds, p.loss)))
-            .collect(),
+        curve: out.loss_curve().unwrap_or_default(),
     };
     (run, out)
+}
+
+/// A loss the report's runs always measure (`generate_within`, `paper_baseline`).
+fn measured(loss: Option<f64>) -> f64 {
+    loss.expect("report runs measure the start's loss")
 }
 
 /// Scalar values in `[0, 1)` of a baseline spec.

@@ -8,17 +8,16 @@
 //! swaps neither read nor change anything another tile of that colour uses, and their ΔL add up
 //! exactly. Each tile draws its pairs from its own seeded generator, so the result is the same on
 //! any number of threads. The tile grid moves by a random offset every round so samples can
-//! migrate anywhere. Proposals are screened ([`SCREENS`]): most losing swaps are skipped after a
-//! few of their heaviest terms. Optimisation stops when a round under the last screen gains less
-//! than [`CONVERGED`] of the total gain so far (or at the `iterations` cap, by default
-//! [`super::MAX_ROUNDS`]).
+//! migrate anywhere. Proposals are screened ([`SCREEN`]): most losing swaps are skipped after a
+//! few of their heaviest terms. Optimisation stops when a round gains less than [`CONVERGED`] of
+//! the total gain so far (or at the `iterations` cap, by default [`super::MAX_ROUNDS`]).
 //!
 //! **Where the time goes, and the layout that follows.** Profiled with `perf` on the scalar
-//! mask EA publishes (128×128×64, Gaussian σ 1.3435 × plain EMA, 10 963 coupled texels per
-//! texel): from IGN's start only about 0.2 % of proposals gain, so almost all the time is the
-//! ΔL of rejected swaps, about 3 000 terms each before the screen gives up, and every round
-//! runs to the 40-round cap. The terms used to be visited heaviest first, one at a time, each
-//! through three wrap tables and a scattered load: about 8 cycles a term. Now:
+//! mask EA publishes (128×128×64, Gaussian σ 1.3435 × plain EMA, over ten thousand coupled
+//! texels per texel): from IGN's start well under 1 % of proposals gain, so almost all the time
+//! is the ΔL of rejected swaps, thousands of terms each before the screen gives up. The terms
+//! used to be visited heaviest first, one at a time, each through three wrap tables and a
+//! scattered load. Now:
 //! - the state is stored **time fastest** (`State`), and the footprint walked one spatial
 //!   offset at a time (`Column`), so a neighbour's frames are one contiguous run and the sum
 //!   over them vectorises (the footprint of a separable filter, `F = F_xy ⊗ F_t`, is exactly
@@ -30,8 +29,10 @@
 //! - both loops have an AVX2 copy chosen at run time, the same operations in the same order,
 //!   so the same bits (`avx2_kernels_give_the_portable_bits`).
 //!
-//! Together: 51.7 s → 7.9 s at 64×64×64 and 222 s → 32.5 s at 128×128×64 on 2 threads, at the
-//! same filtered error (`noisebake report bench` measures the current figures).
+//! Together these made the optimiser several times faster at the same filtered error. A bake
+//! also skips evaluating the start's loss (eq. 7 visits every term, the cost of many rounds:
+//! [`Limits::measure_loss`]) and stops when a round's gain is spent ([`CONVERGED`]).
+//! `noisebake report bench` measures the current times, errors and loss curves.
 
 use super::distance::Distance;
 use super::filter::Footprint;
@@ -40,16 +41,26 @@ use rayon::prelude::*;
 use std::cell::UnsafeCell;
 use std::time::Instant;
 
-/// A round whose loss decrease is below this fraction of the decrease so far ends optimisation.
-pub const CONVERGED: f64 = 2e-3;
+/// A round whose loss decrease is below this fraction of the decrease so far ends optimisation:
+/// the gain is spent.
+///
+/// Why this fraction: the gain of a round falls off slowly (roughly as a power of the round
+/// count), and so does the filtered error, so any threshold is a trade of bake time for error.
+/// At 1 % the two bench cases FAST is measured on (scalar Gaussian × EMA, cosine hemisphere
+/// box 5 × EMA, 128² × 64 and × 32) end within about 1 % of the error that 40 rounds reach, in
+/// under half their time; `noisebake report bench` prints each case's curve of loss decrease and
+/// error against time, where the trade can be read off. The optimiser's own gain is the yardstick, not
+/// the start's head start over a random order: that head start is hundreds of times the whole
+/// optimisation's gain from a free start (IGN, the free pair) and would end it after a round or
+/// two, well before the error stops falling.
+pub const CONVERGED: f64 = 1e-2;
 /// Preferred tile side (texels); tiles are never narrower than the footprint radius + 1.
 const TILE: usize = 16;
 /// Half-width of the window near partners are drawn from.
 const LOCAL: u64 = 2;
 
-/// The screens κ of the ΔL evaluation that [`optimize`] runs through: it starts with the first
-/// and moves to the next each time a round gains less than the convergence fraction, and stops
-/// when a round under the last gains less.
+/// The screen κ of the ΔL evaluation: a proposal is given up once its partial sum falls below
+/// `−κ · d(s_i, s_j) · √(Σ F²)` of the terms not yet visited.
 ///
 /// Why screen: the exact early rejection bounds every unvisited term of eq. (8) by
 /// `2 F d(s_i, s_j)` (triangle inequality), but the terms have mixed signs, so their sum is
@@ -58,11 +69,11 @@ const LOCAL: u64 = 2;
 /// per proposal on average; the screen at κ = 1 visits ~170, and the loss falls ~5× faster per
 /// second. A screen only ever *skips* a swap that very likely does not gain: accepted swaps are
 /// still evaluated in full, so the loss falls monotonically and its bookkeeping stays exact.
-/// κ = 1 was the fastest single value of 0.3–3 on that case; κ = 4 then picks up most of the
-/// subtle swaps it skips. The exact level (κ = ∞) is left out: on the long footprints of an EMA
-/// over the whole loop (`beta = 0`, every frame coupled) one exact round costs several screened
-/// ones for a gain the measured error does not show (`report fast`).
-pub const SCREENS: [f64; 2] = [1.0, 4.0];
+/// κ = 1 was the fastest of 0.3–3 on that case. A second, wider screen (κ = 4) used to follow
+/// once κ = 1 converged; under the stopping rule of [`CONVERGED`] a bake now ends before that
+/// point, where the measured error no longer pays for more rounds (`noisebake report bench`'s
+/// curves).
+pub const SCREEN: f64 = 1.0;
 
 /// When to stop.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,6 +85,9 @@ pub struct Limits {
     /// A round gaining less than this fraction of the gain so far ends optimisation
     /// ([`CONVERGED`] when baking).
     pub converged: f64,
+    /// Whether to evaluate the start's loss (eq. 7) for [`Outcome::initial_loss`]: reports
+    /// want it, a bake does not (it costs about a round).
+    pub measure_loss: bool,
 }
 
 /// One point of the loss-against-time curve.
@@ -81,8 +95,9 @@ pub struct Limits {
 pub struct CurvePoint {
     /// Seconds since optimisation started.
     pub seconds: f64,
-    /// Loss (eq. 7) after the round.
-    pub loss: f64,
+    /// How far the loss (eq. 7) has fallen since the start, after this round: exact, from the
+    /// ΔL of every accepted swap (eq. 8), so it needs no evaluation of the loss itself.
+    pub decrease: f64,
     /// Swaps accepted in the round.
     pub accepted: u64,
 }
@@ -92,16 +107,88 @@ pub struct CurvePoint {
 pub struct Outcome {
     /// Samples, `channels` per texel, x fastest.
     pub samples: Vec<f64>,
-    /// Loss of the stratified initialisation.
-    pub initial_loss: f64,
-    /// Loss after each round.
+    /// Loss of the start, when [`Limits::measure_loss`] asked for it. One evaluation of eq. (7)
+    /// costs about as much as a round, so a bake (which only needs the samples) skips it.
+    pub initial_loss: Option<f64>,
+    /// One point per round.
     pub curve: Vec<CurvePoint>,
 }
 
 impl Outcome {
-    /// Final loss.
-    pub fn loss(&self) -> f64 {
-        self.curve.last().map_or(self.initial_loss, |p| p.loss)
+    /// How far the loss fell in all.
+    pub fn decrease(&self) -> f64 {
+        self.curve.last().map_or(0.0, |p| p.decrease)
+    }
+
+    /// Final loss, when the start's was measured.
+    pub fn loss(&self) -> Option<f64> {
+        self.initial_loss.map(|l| l - self.decrease())
+    }
+
+    /// `(seconds, loss)` from the start (at 0 s) through every round, when the start's loss
+    /// was measured.
+    pub fn loss_curve(&self) -> Option<Vec<(f64, f64)>> {
+        let l0 = self.initial_loss?;
+        Some(
+            std::iter::once((0.0, l0))
+                .chain(self.curve.iter().map(|p| (p.seconds, l0 - p.decrease)))
+                .collect(),
+        )
+    }
+}
+
+/// What a run shares with the paper's schedule ([`super::paper`]): the clock, the state in the
+/// optimiser's layout, the ΔL evaluator and, when asked for, the start's loss.
+pub(super) struct Run<'a, const C: usize, D> {
+    pub(super) clock: Instant,
+    pub(super) state: State<C>,
+    pub(super) problem: Problem<'a, C, D>,
+    pub(super) initial_loss: Option<f64>,
+}
+
+impl<'a, const C: usize, D: Distance<C>> Run<'a, C, D> {
+    /// Sets a run up, or returns the finished outcome when there is nothing to optimise (an
+    /// empty footprint, or fewer than `min_texels` texels per slice).
+    pub(super) fn start(
+        dims: [usize; 3],
+        fp: &'a Footprint,
+        samples: Vec<f64>,
+        dist: D,
+        measure_loss: bool,
+        min_texels: usize,
+    ) -> Result<Self, Outcome> {
+        let state = to_state::<C>(&samples, dims);
+        let problem = Problem::new(fp, dims, dist);
+        let initial_loss = measure_loss.then(|| problem.loss(&state));
+        // The curve's clock starts after the measurement: its times are the optimisation's.
+        let clock = Instant::now();
+        if fp.is_empty() || dims[0] * dims[1] < min_texels {
+            return Err(Outcome {
+                samples,
+                initial_loss,
+                curve: Vec::new(),
+            });
+        }
+        Ok(Run {
+            clock,
+            state,
+            problem,
+            initial_loss,
+        })
+    }
+
+    /// Seconds since the run started.
+    pub(super) fn seconds(&self) -> f64 {
+        self.clock.elapsed().as_secs_f64()
+    }
+
+    /// The outcome: the samples in the texture's order and the curve.
+    pub(super) fn finish(self, curve: Vec<CurvePoint>) -> Outcome {
+        Outcome {
+            samples: self.state.into_samples(),
+            initial_loss: self.initial_loss,
+            curve,
+        }
     }
 }
 
@@ -315,7 +402,7 @@ pub(super) struct Problem<'a, const C: usize, D> {
     /// `tail[m] = Σ F` over the columns from `m` on: the weight not yet visited.
     tail: Vec<f64>,
     /// `spread[m] = √(Σ F²)` over the columns from `m` on: the scale of the unvisited terms'
-    /// sum (see [`SCREENS`]).
+    /// sum (see [`SCREEN`]).
     spread: Vec<f64>,
     /// Whether the CPU has AVX2 ([`Problem::gain`] then runs its AVX2 copy: the same bits).
     avx2: bool,
@@ -374,7 +461,7 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
     /// the sign is settled. Columns are visited heaviest first, so this usually happens early.
     ///
     /// With a finite `screen` κ it also gives up once the partial sum is below
-    /// `−κ · d(s_i, s_j) · √(Σ F²_unvisited)` (see [`SCREENS`]); `f64::INFINITY` is exact.
+    /// `−κ · d(s_i, s_j) · √(Σ F²_unvisited)` (see [`SCREEN`]); `f64::INFINITY` is exact.
     ///
     /// The sum over a column runs in [`LANES`] interleaved partial sums, added in a fixed order
     /// at the column's end: the same bits whether or not the compiler vectorises it. The `f32`
@@ -650,28 +737,20 @@ where
         max_rounds,
         budget,
         converged,
+        measure_loss,
     } = limits;
-    let start = Instant::now();
     let [w, h, n] = dims;
-    let state = to_state::<C>(&samples, dims);
-    let problem = Problem::new(fp, dims, dist);
-    let initial_loss = problem.loss(&state);
+    let run = match Run::start(dims, fp, samples, dist, measure_loss, 2) {
+        Ok(run) => run,
+        Err(done) => return done,
+    };
+    let (state, problem) = (&run.state, &run.problem);
     let mut curve = Vec::new();
-    if fp.is_empty() || w * h < 2 {
-        return Outcome {
-            samples,
-            initial_loss,
-            curve,
-        };
-    }
     let bx = tile_bounds(w, fp.radius[0]);
     let by = tile_bounds(h, fp.radius[1]);
     let (tx, ty) = (bx.len() - 1, by.len() - 1);
-    let mut loss = initial_loss;
     let mut total_gain = 0.0;
-    let mut level = 0;
     for round in 0..max_rounds {
-        let kappa = SCREENS[level];
         let mut rng = SplitMix64::new(derive_seed(seed, round as u64));
         let (ox, oy) = (rng.below(w as u64) as usize, rng.below(h as u64) as usize);
         let mut round_gain = 0.0;
@@ -727,11 +806,11 @@ where
                             continue;
                         }
                         let (p, q) = (at(a), at(b));
-                        if !problem.survives(&state, p, q, t, kappa as f32) {
+                        if !problem.survives(state, p, q, t, SCREEN as f32) {
                             continue;
                         }
                         if let Some(g) = problem
-                            .gain(&state, p, q, t, f64::INFINITY)
+                            .gain(state, p, q, t, f64::INFINITY)
                             .filter(|&g| g > 0.0)
                         {
                             let (i, j) = (problem.cell(p, t), problem.cell(q, t));
@@ -750,31 +829,23 @@ where
                 accepted += a;
             }
         }
-        // ΔΣFd = 2·gain per swap (eq. 8), and L = −ΣFd.
-        loss -= 2.0 * round_gain;
         total_gain += round_gain;
         curve.push(CurvePoint {
-            seconds: start.elapsed().as_secs_f64(),
-            loss,
+            seconds: run.seconds(),
+            // ΔΣFd = 2·gain per swap (eq. 8), and L = −ΣFd.
+            decrease: 2.0 * total_gain,
             accepted,
         });
         progress(round as u64 + 1, max_rounds as u64);
         if round_gain <= converged * total_gain {
-            if level + 1 == SCREENS.len() {
-                break;
-            }
-            level += 1;
+            break;
         }
         // A wall-clock budget (reports only: it makes the result depend on the machine).
-        if budget.is_some_and(|b| start.elapsed().as_secs_f64() >= b) {
+        if budget.is_some_and(|b| run.seconds() >= b) {
             break;
         }
     }
-    Outcome {
-        samples: state.into_samples(),
-        initial_loss,
-        curve,
-    }
+    run.finish(curve)
 }
 
 #[cfg(test)]
@@ -871,9 +942,7 @@ mod tests {
             let exact = problem
                 .gain(&state, p, q, t, f64::INFINITY)
                 .filter(|&g| g > 0.0);
-            let fast = problem
-                .gain(&state, p, q, t, SCREENS[0])
-                .filter(|&g| g > 0.0);
+            let fast = problem.gain(&state, p, q, t, SCREEN).filter(|&g| g > 0.0);
             exact_gains += exact.is_some() as u32;
             match (exact, fast) {
                 (Some(e), Some(f)) => {

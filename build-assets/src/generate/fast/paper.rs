@@ -10,22 +10,19 @@
 //! can raise the loss (their ΔL were computed apart); the curve records the exact loss every
 //! `loss_every` iterations.
 //!
-//! Measured here (cosine hemisphere, box 5×5 × EMA, product; `noisebake report fast --paper`):
+//! What `noisebake report fast --paper` measures (cosine hemisphere, box 5×5 × EMA, product):
 //! once γ reaches 1, over half of all pairs swap together each iteration, their ΔL undo each
-//! other and the loss climbs back above its start, where it stays (32×32×8: −4768.8 at the
-//! start, about −4715 from then on). With γ capped ([`Schedule::gamma_max`]) it converges: on
-//! 64×64×16 and 2 threads, 10 000 iterations reach −55681.9 in 267–301 s at γ ≤ 1/8 (our
-//! optimiser: the same loss after 13 s) and −55693.2 in 528–576 s at γ ≤ 1/4 (below where our
-//! optimiser stops when baking, −55682.0 after 19 s; run on, it reaches −55693.2 after 28 s).
+//! other and the loss climbs back above its start, where it stays. With γ capped
+//! ([`Schedule::gamma_max`]) it converges, but its 10 000 iterations take over ten times as
+//! long as [`super::optimize`] needs for the same loss.
 //!
 //! The early rejection of [`super::optimize`]'s ΔL only ever rejects swaps that cannot lower the
 //! loss, so it decides exactly as a full evaluation would.
 
 use super::filter::Footprint;
-use super::optimize::{CurvePoint, Outcome, Problem, to_state};
+use super::optimize::{CurvePoint, Outcome, Run};
 use crate::generate::rng::{SplitMix64, derive_seed, permutation};
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// How long to run the paper's schedule, and how.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,7 +36,8 @@ pub struct Schedule {
 }
 
 /// Runs the paper's schedule from `samples` (each slice already stratified).
-/// `progress(iteration, iterations)` is called after each iteration.
+/// `progress(iteration, iterations)` is called after each iteration. The start's loss is always
+/// measured: the schedule's swaps can raise the loss, so its curve is of exact losses.
 pub fn optimize<const C: usize, D>(
     dims: [usize; 3],
     fp: &Footprint,
@@ -57,20 +55,14 @@ where
         loss_every,
         gamma_max,
     } = schedule;
-    let start = Instant::now();
     let [w, h, n] = dims;
-    let state = to_state::<C>(&samples, dims);
-    let problem = Problem::new(fp, dims, dist);
-    let initial_loss = problem.loss(&state);
+    let run = match Run::start(dims, fp, samples, dist, true, 2) {
+        Ok(run) => run,
+        Err(done) => return done,
+    };
+    let (state, problem) = (&run.state, &run.problem);
+    let initial_loss = run.initial_loss.expect("measured");
     let mut curve = Vec::new();
-    let pairs = (w * h / 2 * n) as u64;
-    if fp.is_empty() || pairs == 0 {
-        return Outcome {
-            samples,
-            initial_loss,
-            curve,
-        };
-    }
     let mut gamma = 0.125f64.min(gamma_max);
     let mut swapped_since = 0;
     for it in 0..iterations {
@@ -90,7 +82,7 @@ where
                     candidates += 1;
                     let (p, q) = ([a % w, a / w], [b % w, b / w]);
                     if problem
-                        .gain(&state, p, q, t, f64::INFINITY)
+                        .gain(state, p, q, t, f64::INFINITY)
                         .is_some_and(|g| g > 0.0)
                     {
                         out.push((problem.cell(p, t), problem.cell(q, t)));
@@ -115,19 +107,15 @@ where
         }
         if (it + 1) % loss_every.max(1) == 0 || it + 1 == iterations {
             curve.push(CurvePoint {
-                seconds: start.elapsed().as_secs_f64(),
-                loss: problem.loss(&state),
+                seconds: run.seconds(),
+                decrease: initial_loss - problem.loss(state),
                 accepted: swapped_since,
             });
             swapped_since = 0;
         }
         progress(it as u64 + 1, iterations as u64);
     }
-    Outcome {
-        samples: state.into_samples(),
-        initial_loss,
-        curve,
-    }
+    run.finish(curve)
 }
 
 /// A uniform number in `[0, 1)` from the top 53 bits of a draw.

@@ -31,11 +31,10 @@
 //! the rank names the texel ([`TieRank::index`]), so the tree is half the size of one that also
 //! carries the index.
 //!
-//! Measured (single thread, `cargo bench -p build-assets --bench vac`): blue2d 64² 2.0 ms, STBN
-//! 64×64×16 37 ms, STBN 128×128×64 0.96 s, 2D×1D×1D 64×64×16×16 1.09 s. The large sizes are
-//! bound by cache misses: their energies (4 MB) do not fit in L2, and each splat reaches 15
-//! slices along t. (With `i64` energies and `u128` keys: 2.5 ms, 49 ms, 1.38 s, 1.48 s. Padding
-//! runs to whole SSE2 vectors, or blocks of 16 or 64 texels, measured slower.)
+//! Measured by `cargo bench -p build-assets --bench vac` (single thread) and `noisebake report
+//! bench`: the large sizes are bound by cache misses: their energies (4 MB) do not fit in L2,
+//! and each splat reaches 15 slices along t. (`i64` energies and `u128` keys measured slower
+//! at every size; so did padding runs to whole SSE2 vectors, or blocks of 16 or 64 texels.)
 //!
 //! Profile (`perf record -e cpu-clock`, one thread, blue2d 2048² and STBN 128×128×64; everything
 //! is inlined into [`rank`], so build with line tables and sort by `srcline`): at 2048² the time

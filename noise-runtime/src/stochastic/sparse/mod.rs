@@ -226,9 +226,9 @@ pub fn sparse_conv3_stochastic(p: [f32; 3], n: u32, seed: u32, xi: f32) -> f32 {
 /// The impulse `i = ⌊n √u⌋` of `n ≤ 64` (probability `(2i + 1)/n²` for uniform `u ∈ [0, 1)`,
 /// eq. 8), with `u` given as its 24 bits `U`, exactly and without a square root: `⌊√x⌋ =
 /// ⌊√⌊x⌋⌋`, so `i = ⌊√⌊n² u⌋⌋`, where `⌊n² u⌋ = n²U >> 24` is below `n² ≤ 4096` and its
-/// integer square root one read of [`ISQRT`]. (A float square root by Newton steps took about
-/// 90 ns of a stochastic Gabor call, this takes about 15, and its rounding could move `i` by
-/// one near the boundaries.)
+/// integer square root one read of [`ISQRT`]. (A float square root by Newton steps measured
+/// several times slower in a stochastic Gabor call, and its rounding could move `i` by one
+/// near the boundaries.)
 #[inline(always)]
 pub(crate) fn importance_index(u_bits: u32, n: u32) -> u32 {
     debug_assert!((1..=64).contains(&n) && u_bits < 1 << 24);
