@@ -219,11 +219,7 @@ fn fast_error(case: &str, dims: &[usize], values: &[f64]) -> Option<f64> {
         ];
         Some(measure("", values, d, &fps).rmse_gauss)
     } else if case.starts_with("fast cosine hemisphere") && dims == vector::DIMS {
-        let dirs: Vec<[f32; 3]> = values
-            .chunks_exact(3)
-            .map(|c| vector::unit_from_unorm([c[0], c[1], c[2]]))
-            .collect();
-        let box5 = vector::measure(&dirs, Space::CosineHemisphere);
+        let box5 = vector::measure(&vector::unit_vectors(values), Space::CosineHemisphere);
         Some(box5[0].rmse)
     } else {
         None

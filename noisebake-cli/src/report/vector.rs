@@ -197,7 +197,7 @@ fn free(f: impl Fn(i32, i32, u32) -> [f32; 3] + Sync) -> Vec<[f32; 3]> {
 
 /// Unit vectors stored as `0.5 + 0.5·v` in unorm bytes (our masks and EA's), decoded from
 /// channel values at bin centres `(b + ½)/256` and renormalised.
-pub fn unit_from_unorm(c: [f64; 3]) -> [f32; 3] {
+fn unit_from_unorm(c: [f64; 3]) -> [f32; 3] {
     let v = c.map(|x| ((x * 256.0 - 0.5).round() / 255.0 * 2.0 - 1.0) as f32);
     let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-6);
     v.map(|x| x / len)
@@ -219,7 +219,7 @@ fn offset_per_frame(mask: &[[f32; 3]], wh: [usize; 2]) -> Vec<[f32; 3]> {
 }
 
 /// Unit vectors from unorm channel values, three per texel.
-fn unit_vectors(v: &[f64]) -> Vec<[f32; 3]> {
+pub fn unit_vectors(v: &[f64]) -> Vec<[f32; 3]> {
     v.chunks_exact(3)
         .map(|c| unit_from_unorm([c[0], c[1], c[2]]))
         .collect()

@@ -148,21 +148,20 @@ pub(super) struct Run<'a, const C: usize, D> {
 
 impl<'a, const C: usize, D: Distance<C>> Run<'a, C, D> {
     /// Sets a run up, or returns the finished outcome when there is nothing to optimise (an
-    /// empty footprint, or fewer than `min_texels` texels per slice).
+    /// empty footprint, or a slice of one texel: no pair to swap).
     pub(super) fn start(
         dims: [usize; 3],
         fp: &'a Footprint,
         samples: Vec<f64>,
         dist: D,
         measure_loss: bool,
-        min_texels: usize,
     ) -> Result<Self, Outcome> {
         let state = to_state::<C>(&samples, dims);
         let problem = Problem::new(fp, dims, dist);
         let initial_loss = measure_loss.then(|| problem.loss(&state));
         // The curve's clock starts after the measurement: its times are the optimisation's.
         let clock = Instant::now();
-        if fp.is_empty() || dims[0] * dims[1] < min_texels {
+        if fp.is_empty() || dims[0] * dims[1] < 2 {
             return Err(Outcome {
                 samples,
                 initial_loss,
@@ -740,7 +739,7 @@ where
         measure_loss,
     } = limits;
     let [w, h, n] = dims;
-    let run = match Run::start(dims, fp, samples, dist, measure_loss, 2) {
+    let run = match Run::start(dims, fp, samples, dist, measure_loss) {
         Ok(run) => run,
         Err(done) => return done,
     };

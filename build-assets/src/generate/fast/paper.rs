@@ -56,7 +56,7 @@ where
         gamma_max,
     } = schedule;
     let [w, h, n] = dims;
-    let run = match Run::start(dims, fp, samples, dist, true, 2) {
+    let run = match Run::start(dims, fp, samples, dist, true) {
         Ok(run) => run,
         Err(done) => return done,
     };
