@@ -83,6 +83,11 @@ const PINS: &[(&str, &str, &str)] = &[
         "25566d4307851ebc6be76d76cc83f3b5",
     ),
     (
+        "kind = \"fast\"\ndims = [32, 32, 8]\ntemporal_filter = { kind = \"taa\" }",
+        "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=taa,alpha=0.1,coverage=0.2};combine=product;iterations=converged;start=ign",
+        "632d4a025e753e30c2379427c24bb507",
+    ),
+    (
         "kind = \"fast\"\ndims = [32, 32, 8]\ndistribution = \"tent\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=scalar;distribution=tent;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=ign",
         "800c49bf6543d7a3782e35d665dfaeef",

@@ -116,6 +116,25 @@ fn bad_fast_specs_name_the_key() {
         &["`temporal_filter.beta` must be in [0, 1], got -0.5"],
     );
     has(
+        error(
+            "kind = \"fast\"\ndims = [16, 16, 4]\ntemporal_filter = { kind = \"taa\", coverage = 0.1 }",
+        ),
+        &[
+            "`temporal_filter.coverage` must be in [0.12, 0.5]",
+            "got 0.1",
+        ],
+    );
+    has(
+        error(
+            "kind = \"fast\"\ndims = [16, 16, 4]\nsample_space = \"sphere\"\nformat = \"u8x3\"\ntemporal_filter = { kind = \"taa\" }",
+        ),
+        &["`sample_space` \"sphere\" is not scalar (use `ema`)"],
+    );
+    has(
+        error("kind = \"fast\"\ndims = [16, 16]\ntemporal_filter = { kind = \"taa\" }"),
+        &["`temporal_filter` needs a time axis"],
+    );
+    has(
         error("kind = \"fast\"\ndims = [16, 16, 4]\nsample_space = \"hemisphre\""),
         &["unknown `sample_space` \"hemisphre\" (did you mean `hemisphere`?)"],
     );

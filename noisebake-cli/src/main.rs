@@ -107,9 +107,11 @@ enum Command {
     /// `vector` (directions: our vector FAST masks against EA's and the free constructions
     /// after box 5×5 and Gaussian σ 1 × EMA, cosine hemisphere and sphere); `sampler` (several
     /// samples per pixel: baked sampler tiles against Heitz et al. 2019's tables with
-    /// `--features peers`, and the free samplers, at 1–16 spp after four filters).
+    /// `--features peers`, and the free samplers, at 1–16 spp after four filters); `taa` (masks
+    /// under a game's TAA: the history clamped to the 3×3 neighbourhood, dithers at several
+    /// coverages and continuous integrands, a static and a moving camera: about a minute).
     Report {
-        /// Which section: fast, stochastic, cnj, all, bench, vector or sampler.
+        /// Which section: fast, stochastic, cnj, all, bench, vector, sampler or taa.
         #[arg(default_value = "all")]
         section: String,
         /// Write the stochastic-noise rows as a JSON list (`{"noise", "variant", "ns_per_eval",
@@ -531,11 +533,23 @@ fn report(
     let mut doc = serde_json::Map::new();
     if !matches!(
         section,
-        "all" | "fast" | "stochastic" | "cnj" | "bench" | "vector" | "sampler"
+        "all" | "fast" | "stochastic" | "cnj" | "bench" | "vector" | "sampler" | "taa"
     ) {
         return Err(format!(
-            "unknown report section `{section}`: use fast, stochastic, cnj, all, bench, vector or sampler"
+            "unknown report section `{section}`: use fast, stochastic, cnj, all, bench, vector, sampler or taa"
         ));
+    }
+    if section == "taa" {
+        use noisebake_cli::report::taa;
+        for l in taa::READING.lines() {
+            println!("  {l}");
+        }
+        let r = taa::run(out, &mut log)?;
+        for line in taa::describe(&r) {
+            println!("{line}");
+        }
+        println!("  wrote {}", out.join("taa.json").display());
+        return Ok(());
     }
     if section == "sampler" {
         use noisebake_cli::report::sampler;

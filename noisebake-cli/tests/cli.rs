@@ -478,3 +478,57 @@ fn gen_writes_a_sampler_tiles_samples_and_its_keys() {
     assert!(h2.contains("'shape': (2, 8, 16, 4, 3)"), "{h2}");
     assert_eq!(bytes2.len() - start2, 2 * samples.len() * 4);
 }
+
+/// The TAA mask through the command line, as the contract writes it (smaller): the
+/// stored u8 values keep every 3×3 window of every slice spread over the coverage range.
+#[test]
+fn gen_bakes_a_fast_mask_for_taa() {
+    let d = tmp("taa");
+    let npy = d.join("m.npy");
+    let (ok, _, err) = noisebake(&[
+        "gen",
+        "--kind",
+        "fast",
+        "--dims",
+        "24x24x8",
+        "--format",
+        "u8",
+        "--spatial-filter",
+        "{kind=\"gauss\",sigma=1.3435}",
+        "--temporal-filter",
+        "{kind=\"taa\",alpha=0.1}",
+        "--out",
+        npy.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        err.contains("temporal_filter={kind=taa,alpha=0.1,coverage=0.2}"),
+        "{err}"
+    );
+    let bytes = std::fs::read(&npy).unwrap();
+    let hlen = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    let v: Vec<f64> = bytes[10 + hlen..]
+        .iter()
+        .map(|&q| q as f64 / 256.0)
+        .collect();
+    assert_eq!(v.len(), 24 * 24 * 8);
+    let open = build_assets::generate::fast::open_windows(&v, [24, 24, 8], 0.2);
+    assert!(open <= 2, "{open} windows open");
+    let (ok, _, err) = noisebake(&[
+        "gen",
+        "--kind",
+        "fast",
+        "--dims",
+        "24x24x8",
+        "--sample-space",
+        "\"vec2\"",
+        "--format",
+        "u8x2",
+        "--temporal-filter",
+        "{kind=\"taa\"}",
+        "--out",
+        npy.to_str().unwrap(),
+    ]);
+    assert!(!ok);
+    assert!(err.contains("is not scalar"), "{err}");
+}

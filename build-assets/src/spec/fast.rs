@@ -145,13 +145,53 @@ pub enum TemporalFilter {
         /// History-rejection probability, in [0, 1]; 0 for a plain EMA.
         beta: f64,
     },
+    /// Temporal anti-aliasing as games run it (Karis 2014): the plain EMA, with the history
+    /// clamped to the min/max of the current frame's 3 × 3 neighbourhood before each blend.
+    ///
+    /// The clamp is what breaks blue noise under TAA: a window whose nine values all fall on
+    /// one side of a dither's threshold has a box of a single value, and the history collapses
+    /// onto the current frame. So the optimiser keeps every 3 × 3 window of every slice holding
+    /// a value below `coverage` and one at or above `1 − coverage` (the property the R2 grid has
+    /// by construction): for a dither `[s < a]` at any coverage `a` in `[coverage, 1 −
+    /// coverage]` every box then spans 0 to 1, the clamp never acts, and the error is the
+    /// EMA's, which the loss measures exactly. Scalar masks only. `noisebake report taa`
+    /// measures it, with variance clipping and a moving camera too.
+    Taa {
+        /// Blend weight of the new frame, in (0, 1].
+        alpha: f64,
+        /// The lowest coverage (and one less the highest) whose dither every window keeps, in
+        /// [0.12, 0.5]: below 1/9 no arrangement can give every window a value under it.
+        coverage: f64,
+    },
+}
+
+/// The default `coverage` of a `taa` temporal filter.
+pub const DEFAULT_TAA_COVERAGE: f64 = 0.2;
+
+impl TemporalFilter {
+    /// The filter the loss sees: a `taa` filter's EMA (its clamp is a constraint on the
+    /// arrangement, not a weight: see [`TemporalFilter::Taa`]).
+    pub fn weights(self) -> TemporalFilter {
+        match self {
+            TemporalFilter::Taa { alpha, .. } => TemporalFilter::Ema { alpha, beta: 0.0 },
+            t => t,
+        }
+    }
+
+    /// The coverage a `taa` filter's windows keep, `None` for every other filter.
+    pub fn clamp_coverage(self) -> Option<f64> {
+        match self {
+            TemporalFilter::Taa { coverage, .. } => Some(coverage),
+            _ => None,
+        }
+    }
 }
 
 impl TemporalFilter {
     /// Frames the filter spans (1 for none).
     pub fn width(self) -> usize {
         match self {
-            TemporalFilter::None | TemporalFilter::Ema { .. } => 1,
+            TemporalFilter::None | TemporalFilter::Ema { .. } | TemporalFilter::Taa { .. } => 1,
             TemporalFilter::Box { size } => size,
             TemporalFilter::Gauss { sigma } => Filter::Gauss { sigma }.taps().len(),
         }
@@ -282,6 +322,13 @@ impl FastParams {
             TemporalFilter::Gauss { sigma } => format!("{{kind=gauss,sigma={}}}", num(sigma)),
             TemporalFilter::Ema { alpha, beta } => {
                 format!("{{kind=ema,alpha={},beta={}}}", num(alpha), num(beta))
+            }
+            TemporalFilter::Taa { alpha, coverage } => {
+                format!(
+                    "{{kind=taa,alpha={},coverage={}}}",
+                    num(alpha),
+                    num(coverage)
+                )
             }
         };
         let combine = match self.combine {
@@ -439,6 +486,25 @@ pub(super) fn parse(
                         t.width()
                     ),
                 ));
+            }
+            if t.clamp_coverage().is_some() {
+                if sample_space != SampleSpace::Scalar {
+                    return Err(SpecError::at(
+                        "temporal_filter",
+                        v.span,
+                        format!(
+                            "a `taa` temporal filter keeps scalar masks' 3×3 windows spread over [0, 1]; `sample_space` \"{}\" is not scalar (use `ema`)",
+                            sample_space.name()
+                        ),
+                    ));
+                }
+                if dims[0] < 3 || dims[1] < 3 {
+                    return Err(SpecError::at(
+                        "temporal_filter",
+                        v.span,
+                        "a `taa` temporal filter needs slices of at least 3×3 texels (its clamp's window)",
+                    ));
+                }
             }
             t
         }
@@ -738,11 +804,46 @@ fn temporal_filter(v: &Spanned<Value>) -> Result<TemporalFilter, SpecError> {
                 beta: unit("temporal_filter.beta", beta, true)?,
             }
         }
+        "taa" => {
+            let alpha = param(K, t, "alpha", v.span, &["coverage"])?;
+            let coverage = param(K, t, "coverage", v.span, &["alpha"])?;
+            let alpha = match alpha {
+                None => DEFAULT_ALPHA,
+                Some(a) => {
+                    let x = number("temporal_filter.alpha", &a)?;
+                    if !(x > 0.0 && x <= 1.0) {
+                        return Err(SpecError::at(
+                            "temporal_filter.alpha",
+                            a.span,
+                            format!("`temporal_filter.alpha` must be in (0, 1], got {x}"),
+                        ));
+                    }
+                    x
+                }
+            };
+            let coverage = match coverage {
+                None => DEFAULT_TAA_COVERAGE,
+                Some(c) => {
+                    let x = number("temporal_filter.coverage", &c)?;
+                    if !(0.12..=0.5).contains(&x) {
+                        return Err(SpecError::at(
+                            "temporal_filter.coverage",
+                            c.span,
+                            format!(
+                                "`temporal_filter.coverage` must be in [0.12, 0.5] (below 1/9 no arrangement gives every 3×3 window a value under it), got {x}"
+                            ),
+                        ));
+                    }
+                    x
+                }
+            };
+            TemporalFilter::Taa { alpha, coverage }
+        }
         other => {
             return Err(SpecError::at(
                 "temporal_filter.kind",
                 v.span,
-                format!("unknown temporal filter \"{other}\"; valid: none, box, gauss, ema"),
+                format!("unknown temporal filter \"{other}\"; valid: none, box, gauss, ema, taa"),
             ));
         }
     })

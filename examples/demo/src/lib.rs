@@ -16,6 +16,7 @@ pub mod equal_time;
 pub mod material;
 pub mod noises;
 mod output;
+pub mod taa_panel;
 
 pub use output::png as save_png;
 
@@ -319,6 +320,8 @@ pub fn main() {
     match run(&cfg) {
         Ok(results) => {
             output::summary(&results, &cfg);
+            let taa = taa_panel::run(&cfg);
+            taa_panel::print(&taa, &cfg);
             let dir = cfg.out.clone().unwrap_or_default();
             println!("\ncurl-noise jittering (implicit blue-noise points):");
             let cnj = cnj_panel::run(&dir, 256).unwrap_or_else(|e| {

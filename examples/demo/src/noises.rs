@@ -33,6 +33,9 @@ pub enum Noise {
     Stbn,
     /// FAST, optimised for the demo's own filter: a Gaussian blur (σ 1 px) and an EMA.
     Fast,
+    /// FAST for the same blur under TAA (the EMA with a 3 × 3 history clamp); measured in the
+    /// TAA panel only ([`crate::taa_panel`]).
+    FastTaa,
 }
 
 impl Noise {
@@ -63,6 +66,7 @@ impl Noise {
             Noise::Golden => "golden",
             Noise::Stbn => "stbn",
             Noise::Fast => "fast",
+            Noise::FastTaa => "fast-taa",
         }
     }
 
@@ -93,6 +97,7 @@ impl Noise {
             Noise::Golden => GOLDEN.get_k_unit(x, y, t, k),
             Noise::Stbn => STBN.get_k_unit(x, y, t, k),
             Noise::Fast => FAST.get_k_unit(x, y, t, k),
+            Noise::FastTaa => FAST_TAA.get_k_unit(x, y, t, k),
         }
     }
 

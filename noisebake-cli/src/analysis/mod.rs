@@ -11,6 +11,7 @@
 pub mod dft;
 pub mod filtered;
 pub mod points;
+pub mod taa;
 
 use build_assets::texture::Texture;
 use serde::Serialize;

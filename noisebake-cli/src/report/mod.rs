@@ -6,4 +6,5 @@ pub mod compare;
 pub mod fast;
 pub mod sampler;
 pub mod stochastic;
+pub mod taa;
 pub mod vector;

@@ -32,6 +32,7 @@ impl TemporalFilter {
             TemporalFilter::Gauss { sigma } => {
                 ring_autocorrelation(&Filter::Gauss { sigma }.taps(), n)
             }
+            TemporalFilter::Taa { .. } => self.weights().overlap(n),
             TemporalFilter::Ema { alpha, beta: 0.0 } => {
                 // No history rejection: the EMA's steady state over a texture that loops every
                 // `n` frames. Its taps α(1 − α)^l for every age l fold onto the ring (frame
@@ -95,6 +96,10 @@ pub struct Footprint {
     /// less the cutoff for a filter whose weights sum to 1). With it the loss converts to the
     /// mean squared error it predicts (`noisebake report fast`'s `loss->rmse`).
     pub total: f64,
+    /// Under TAA ([`TemporalFilter::Taa`]), the coverage every 3 × 3 window of a slice keeps:
+    /// a value below it and one at or above one less it. A constraint on the arrangement the
+    /// optimiser keeps (`optimize`), not a weight.
+    pub clamp: Option<f64>,
 }
 
 /// Distinct offsets on a ring of `n`: `-(n-1)/2 ..= n/2`.
@@ -177,6 +182,7 @@ impl Footprint {
             radius,
             dropped: if kept > 0.0 { dropped / kept } else { 0.0 },
             total: kept + weight(0, 0, 0).max(0.0),
+            clamp: temporal.clamp_coverage(),
         }
     }
 

@@ -156,8 +156,9 @@ impl<'a, const C: usize, D: Distance<C>> Run<'a, C, D> {
         dist: D,
         measure_loss: bool,
     ) -> Result<Self, Outcome> {
-        let state = to_state::<C>(&samples, dims);
+        let mut state = to_state::<C>(&samples, dims);
         let problem = Problem::new(fp, dims, dist);
+        problem.count_windows(&mut state);
         let initial_loss = measure_loss.then(|| problem.loss(&state));
         // The curve's clock starts after the measurement: its times are the optimisation's.
         let clock = Instant::now();
@@ -207,6 +208,10 @@ pub(super) struct State<const C: usize> {
     cells: Box<[UnsafeCell<[f64; C]>]>,
     /// The same samples rounded to `f32`, for the screen ([`Problem::survives`]).
     screen: Box<[UnsafeCell<[f32; C]>]>,
+    /// Under TAA ([`Footprint::clamp`]), per cell (the 3 × 3 window centred on that texel of
+    /// that slice, the same layout): how many of its values are low (below the coverage) and
+    /// how many high (at or above one less it). Empty otherwise.
+    windows: Box<[UnsafeCell<[u8; 2]>]>,
     /// `w·h` and `n`, for the conversions.
     pixels: usize,
     frames: usize,
@@ -254,6 +259,19 @@ impl<const C: usize> State<C> {
             *self.cells[i].get() = v;
             *self.screen[i].get() = v.map(|x| x as f32);
         }
+    }
+
+    #[inline(always)]
+    fn window(&self, i: usize) -> [u8; 2] {
+        // SAFETY: as for `run`: a window's counts are read and written only by the task whose
+        // tile holds a texel within one of its centre (the tiles' halo covers that).
+        unsafe { *self.windows[i].get() }
+    }
+
+    #[inline(always)]
+    fn set_window(&self, i: usize, v: [u8; 2]) {
+        // SAFETY: as for `window`.
+        unsafe { *self.windows[i].get() = v }
     }
 
     /// The samples, `C` values per texel, in the texture's order.
@@ -475,12 +493,33 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
         t: usize,
         screen: f64,
     ) -> Option<f64> {
+        self.gain_dispatch(s, p, q, t, screen, true)
+    }
+
+    /// The exact half change of `Σ F d` of [`gain`](Self::gain) (positive: the loss falls),
+    /// without giving up early: for swaps accepted whatever their ΔL (a window repaired under
+    /// TAA), whose change the loss's bookkeeping still needs.
+    pub(super) fn delta(&self, s: &State<C>, p: [usize; 2], q: [usize; 2], t: usize) -> f64 {
+        self.gain_dispatch(s, p, q, t, f64::INFINITY, false)
+            .unwrap_or(0.0)
+    }
+
+    #[inline(always)]
+    fn gain_dispatch(
+        &self,
+        s: &State<C>,
+        p: [usize; 2],
+        q: [usize; 2],
+        t: usize,
+        screen: f64,
+        bounded: bool,
+    ) -> Option<f64> {
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
             // SAFETY: `avx2` is set only when the CPU has AVX2 (`Problem::new`).
-            return unsafe { self.gain_avx2(s, p, q, t, screen) };
+            return unsafe { self.gain_avx2(s, p, q, t, screen, bounded) };
         }
-        self.gain_body(s, p, q, t, screen)
+        self.gain_body(s, p, q, t, screen, bounded)
     }
 
     /// [`gain`](Self::gain) compiled for AVX2: the same operations in the same order, so the
@@ -494,8 +533,9 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
         q: [usize; 2],
         t: usize,
         screen: f64,
+        bounded: bool,
     ) -> Option<f64> {
-        self.gain_body(s, p, q, t, screen)
+        self.gain_body(s, p, q, t, screen, bounded)
     }
 
     #[inline(always)]
@@ -506,6 +546,7 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
         q: [usize; 2],
         t: usize,
         screen: f64,
+        bounded: bool,
     ) -> Option<f64> {
         let [w, h, n] = self.torus.dims;
         let (i, j) = (self.cell(p, t), self.cell(q, t));
@@ -541,8 +582,9 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
             acc += lanes.iter().sum::<f64>();
             // `screen · 0` is NaN for an infinite screen at the end: the test is then false.
             let rest = m + 1;
-            if acc + 2.0 * dij * self.tail[rest] <= 0.0
-                || acc + screen * dij * self.spread[rest] <= 0.0
+            if bounded
+                && (acc + 2.0 * dij * self.tail[rest] <= 0.0
+                    || acc + screen * dij * self.spread[rest] <= 0.0)
             {
                 return None;
             }
@@ -676,6 +718,132 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
     }
 }
 
+/// Under TAA, the margin of a window's classes: one 8-bit step, so that a value counted low
+/// (high) still reads below `coverage` (at or above `1 − coverage`) however its texel is read —
+/// `q / 256` by the runtime, `q / 255` as a GPU unorm, `(q + 0.5) / 256` at the centre — in
+/// 8 or 16 bits.
+pub const CLAMP_MARGIN: f64 = 1.0 / 256.0;
+
+/// Under TAA: a value's membership of a window's counts, `[low, high]`: below the coverage,
+/// at or above one less it, with [`CLAMP_MARGIN`].
+#[inline(always)]
+fn class(v: f64, coverage: f64) -> [i8; 2] {
+    [
+        i8::from(v < coverage - CLAMP_MARGIN),
+        i8::from(v >= 1.0 - coverage + CLAMP_MARGIN),
+    ]
+}
+
+/// Whether a window with these counts is open: it lacks a low or a high value, so the clamp
+/// acts on the dither of some coverage the filter keeps.
+#[inline(always)]
+fn open(c: [u8; 2]) -> i32 {
+    i32::from(c[0] == 0 || c[1] == 0)
+}
+
+/// The windows a swap changes (at most the 18 centred within one texel of either partner) and
+/// their new counts.
+pub(super) struct WindowChange {
+    cells: [usize; 18],
+    counts: [[u8; 2]; 18],
+    len: usize,
+    /// The change in the number of open windows.
+    pub(super) opened: i32,
+}
+
+impl<const C: usize, D> Problem<'_, C, D> {
+    /// Counts every window of `s` ([`State`]'s `windows`) when the footprint has a clamp.
+    pub(super) fn count_windows(&self, s: &mut State<C>) {
+        let Some(coverage) = self.fp.clamp else {
+            return;
+        };
+        let [w, h, n] = self.torus.dims;
+        let counts: Vec<UnsafeCell<[u8; 2]>> = (0..w * h * n)
+            .map(|i| {
+                let (pixel, t) = (i / n, i % n);
+                let (x, y) = (pixel % w, pixel / w);
+                let mut c = [0u8; 2];
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        let k = class(s.load(self.torus.pixel(x, y, dx, dy) * n + t)[0], coverage);
+                        c[0] += k[0] as u8;
+                        c[1] += k[1] as u8;
+                    }
+                }
+                UnsafeCell::new(c)
+            })
+            .collect();
+        s.windows = counts.into_boxed_slice();
+    }
+
+    /// Under TAA, how swapping the samples at `p` and `q` of slice `t` changes the windows;
+    /// `None` when it changes none (no clamp, or both values of the same class).
+    #[inline]
+    pub(super) fn window_change(
+        &self,
+        s: &State<C>,
+        p: [usize; 2],
+        q: [usize; 2],
+        t: usize,
+    ) -> Option<WindowChange> {
+        let coverage = self.fp.clamp?;
+        let n = self.torus.dims[2];
+        let ci = class(s.load(self.cell(p, t))[0], coverage);
+        let cj = class(s.load(self.cell(q, t))[0], coverage);
+        if ci == cj {
+            return None;
+        }
+        // Windows around p trade s_i for s_j; those around q the reverse; a window around both
+        // keeps its counts.
+        let d = [cj[0] - ci[0], cj[1] - ci[1]];
+        let mut cells = [0usize; 18];
+        let mut delta = [[0i8; 2]; 18];
+        let mut len = 0;
+        for (at, sign) in [(p, 1i8), (q, -1i8)] {
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let cell = self.torus.pixel(at[0], at[1], dx, dy) * n + t;
+                    let k = cells[..len]
+                        .iter()
+                        .position(|&c| c == cell)
+                        .unwrap_or_else(|| {
+                            cells[len] = cell;
+                            len += 1;
+                            len - 1
+                        });
+                    delta[k][0] += sign * d[0];
+                    delta[k][1] += sign * d[1];
+                }
+            }
+        }
+        let mut counts = [[0u8; 2]; 18];
+        let mut opened = 0;
+        for k in 0..len {
+            let old = s.window(cells[k]);
+            let new = [
+                (old[0] as i8 + delta[k][0]) as u8,
+                (old[1] as i8 + delta[k][1]) as u8,
+            ];
+            opened += open(new) - open(old);
+            counts[k] = new;
+        }
+        Some(WindowChange {
+            cells,
+            counts,
+            len,
+            opened,
+        })
+    }
+
+    /// Writes a change's counts (after its swap).
+    #[inline]
+    pub(super) fn apply(&self, s: &State<C>, change: &WindowChange) {
+        for k in 0..change.len {
+            s.set_window(change.cells[k], change.counts[k]);
+        }
+    }
+}
+
 /// Tile boundaries along one axis of size `n` for a footprint radius `r`: an even number of
 /// tiles (so a 2-colouring wraps), each wider than `r`, or a single tile.
 fn tile_bounds(n: usize, r: usize) -> Vec<usize> {
@@ -712,6 +880,7 @@ pub(super) fn to_state<const C: usize>(samples: &[f64], dims: [usize; 3]) -> Sta
         screen: (0..px * n)
             .map(|i| UnsafeCell::new(at(i).map(|x| x as f32)))
             .collect(),
+        windows: Box::new([]),
         pixels: px,
         frames: n,
     }
@@ -745,21 +914,26 @@ where
     };
     let (state, problem) = (&run.state, &run.problem);
     let mut curve = Vec::new();
-    let bx = tile_bounds(w, fp.radius[0]);
-    let by = tile_bounds(h, fp.radius[1]);
+    // Under TAA a tile also writes the window counts of texels one beyond it and reads those
+    // within one of its partners: a halo of at least 2.
+    let halo = |r: usize| if fp.clamp.is_some() { r.max(2) } else { r };
+    let bx = tile_bounds(w, halo(fp.radius[0]));
+    let by = tile_bounds(h, halo(fp.radius[1]));
     let (tx, ty) = (bx.len() - 1, by.len() - 1);
     let mut total_gain = 0.0;
+    let mut total_repaired = 0.0;
     for round in 0..max_rounds {
         let mut rng = SplitMix64::new(derive_seed(seed, round as u64));
         let (ox, oy) = (rng.below(w as u64) as usize, rng.below(h as u64) as usize);
         let mut round_gain = 0.0;
         let mut accepted = 0;
+        let mut round_repaired = 0.0;
         for colour in 0..4 {
             let tiles: Vec<(usize, usize)> = (0..ty)
                 .flat_map(|j| (0..tx).map(move |i| (i, j)))
                 .filter(|&(i, j)| (i % 2) + 2 * (j % 2) == colour)
                 .collect();
-            let results: Vec<(f64, u64)> = tiles
+            let results: Vec<(f64, u64, f64)> = tiles
                 .par_iter()
                 .map(|&(i, j)| {
                     let tile_seed = derive_seed(
@@ -770,9 +944,9 @@ where
                     let (x0, tw) = (bx[i], bx[i + 1] - bx[i]);
                     let (y0, th) = (by[j], by[j + 1] - by[j]);
                     let cells = (tw * th) as u64;
-                    let (mut gain, mut acc) = (0.0, 0u64);
+                    let (mut gain, mut acc, mut repaired) = (0.0, 0u64, 0.0);
                     if cells < 2 {
-                        return (gain, acc);
+                        return (gain, acc, repaired);
                     }
                     // Tile cell `c` at (c mod tw, c / tw), shifted by the round's offset; both
                     // sums stay below twice the axis, so one conditional subtraction wraps.
@@ -805,6 +979,27 @@ where
                             continue;
                         }
                         let (p, q) = (at(a), at(b));
+                        let swap = |g: f64| {
+                            let (i, j) = (problem.cell(p, t), problem.cell(q, t));
+                            let (si, sj) = (state.load(i), state.load(j));
+                            state.store(i, sj);
+                            state.store(j, si);
+                            g
+                        };
+                        // Under TAA the windows come first: a swap that opens one is never
+                        // made, and one that closes more than it opens is made whatever its
+                        // ΔL (the order is lexicographic: open windows, then the loss).
+                        let change = problem.window_change(state, p, q, t);
+                        match change.as_ref().map(|c| c.opened) {
+                            Some(o) if o > 0 => continue,
+                            Some(o) if o < 0 => {
+                                repaired += swap(problem.delta(state, p, q, t));
+                                problem.apply(state, change.as_ref().expect("some"));
+                                acc += 1;
+                                continue;
+                            }
+                            _ => {}
+                        }
                         if !problem.survives(state, p, q, t, SCREEN as f32) {
                             continue;
                         }
@@ -812,30 +1007,33 @@ where
                             .gain(state, p, q, t, f64::INFINITY)
                             .filter(|&g| g > 0.0)
                         {
-                            let (i, j) = (problem.cell(p, t), problem.cell(q, t));
-                            let (si, sj) = (state.load(i), state.load(j));
-                            state.store(i, sj);
-                            state.store(j, si);
-                            gain += g;
+                            gain += swap(g);
+                            if let Some(c) = &change {
+                                problem.apply(state, c);
+                            }
                             acc += 1;
                         }
                     }
-                    (gain, acc)
+                    (gain, acc, repaired)
                 })
                 .collect();
-            for (g, a) in results {
+            for (g, a, r) in results {
                 round_gain += g;
                 accepted += a;
+                round_repaired += r;
             }
         }
         total_gain += round_gain;
+        total_repaired += round_repaired;
         curve.push(CurvePoint {
             seconds: run.seconds(),
             // ΔΣFd = 2·gain per swap (eq. 8), and L = −ΣFd.
-            decrease: 2.0 * total_gain,
+            decrease: 2.0 * (total_gain + total_repaired),
             accepted,
         });
         progress(round as u64 + 1, max_rounds as u64);
+        // The yardstick is the gain of the swaps made for the loss; under TAA, the swaps that
+        // close windows (made whatever their ΔL) are left out of it.
         if round_gain <= converged * total_gain {
             break;
         }
