@@ -585,9 +585,8 @@ fn report(
             "bake time against size (wall seconds; estimate: what `gen` and build scripts announce, and its ratio to the time):"
         );
         let b = noisebake_cli::report::bench::run(out, full, &mut log)?;
-        println!("  fitted exponent of time against texels (1 = linear):");
-        for f in &b.fits {
-            println!("  {:<48} {} thr  {:.2}", f.case, f.threads, f.exponent);
+        for line in noisebake_cli::report::bench::describe_fits(&b) {
+            println!("{line}");
         }
         println!(
             "  wrote {} and {}",
@@ -602,40 +601,22 @@ fn report(
         ));
     }
     if matches!(section, "all" | "cnj") {
-        use noisebake_cli::analysis::points::{READING, table2};
-        use noisebake_cli::points::{METHODS, Method};
-        println!("point sets (CNJ Table 2): 1000 points, mean of 20 seeds");
-        println!(
-            "  {:<15} {:>7} {:>8} {:>9} {:>12}",
-            "method", "ν_eff", "ā", "q", "ms per set"
+        use noisebake_cli::report::cnj;
+        let rows = cnj::run();
+        for line in cnj::describe(&rows) {
+            println!("{line}");
+        }
+        doc.insert(
+            "cnj".into(),
+            serde_json::to_value(&rows).map_err(|e| e.to_string())?,
         );
-        let mut rows = Vec::new();
-        for name in METHODS {
-            let m = Method::parse(name).expect("listed");
-            let r = table2(m, 1000, 20);
-            let (nu, a, q, ms) = (r.nu_eff, r.anisotropy, r.q, r.ms_per_set);
-            println!("  {name:<15} {nu:>7.3} {a:>8.2} {q:>9.5} {ms:>12.3}");
-            rows.push(serde_json::json!({"method": name, "nu_eff": nu, "anisotropy": a, "q": q, "ms_per_set": ms}));
-        }
-        println!("  paper (CNJ, Python reference): ν_eff 0.70, ā 71.81, q 0.0097, 62.1 ms");
-        for line in READING.lines() {
-            println!("  {line}");
-        }
-        doc.insert("cnj".into(), serde_json::Value::Array(rows));
     }
     if matches!(section, "all" | "fast") {
+        use noisebake_cli::report::fast;
         println!("FAST (filter-adapted masks):");
-        let r = noisebake_cli::report::fast::run(out, full, paper, &mut log)?;
-        println!("  error after filtering, 64x64x16 scalar (steps, Gaussian σ 1.3435, EMA α 0.1):");
-        println!(
-            "  {:<24} {:>14} {:>10} {:>14}",
-            "mask", "spatial+EMA", "EMA only", "spatial only"
-        );
-        for e in &r.errors {
-            println!(
-                "  {:<24} {:>14.5} {:>10.5} {:>14.5}",
-                e.mask, e.spatial_and_ema, e.ema_only, e.spatial_only
-            );
+        let r = fast::run(out, full, paper, &mut log)?;
+        for line in fast::describe(&r) {
+            println!("{line}");
         }
         doc.insert(
             "fast".into(),
@@ -645,81 +626,13 @@ fn report(
     let mut rows_json = None;
     if matches!(section, "all" | "stochastic") {
         use noisebake_cli::report::stochastic;
-        println!("stochastic noise (3D unless named, single thread, random-order points):");
-        println!(
-            "  (ns/eval: median of 9 rounds; speedup: our deterministic time / this one, the median over 9 rounds"
-        );
-        println!(
-            "   of the two run in interleaved chunks of the same points; for peer crates below 1 when ours is faster)"
-        );
-        if !stochastic::HAS_PEERS {
-            println!(
-                "  (peers not compiled in: add `--features peers` to measure noise-functions and fastnoise-lite in this run)"
-            );
-        }
-        println!(
-            "  (rmse@k: RMSE against the deterministic value of the mean of k estimates with white-noise ξ;"
-        );
-        println!(
-            "   stbn@16: the same at 16 with ξ from a 2D×1D blue-noise mask; bias: mean error of many estimates, 0 when unbiased)"
-        );
         let rows = if quick {
             stochastic::run_with(1024)
         } else {
             stochastic::run()
         };
-        println!(
-            "  {:<18} {:<20} {:>9} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10}",
-            "noise",
-            "variant",
-            "ns/eval",
-            "speedup",
-            "rmse@1",
-            "rmse@4",
-            "rmse@16",
-            "rmse@64",
-            "stbn@16",
-            "bias"
-        );
-        for r in &rows {
-            let g = |m: &Option<std::collections::BTreeMap<String, f64>>, k: &str| {
-                m.as_ref()
-                    .map_or("-".to_string(), |m| format!("{:.4}", m[k]))
-            };
-            println!(
-                "  {:<18} {:<20} {:>9.1} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10}",
-                r.noise,
-                r.variant,
-                r.ns_per_eval,
-                r.speedup.map_or("-".into(), |s| if s < 10.0 {
-                    format!("{s:.2}x")
-                } else {
-                    format!("{s:.1}x")
-                }),
-                g(&r.rmse, "1"),
-                g(&r.rmse, "4"),
-                g(&r.rmse, "16"),
-                g(&r.rmse, "64"),
-                g(&r.rmse_stbn, "16"),
-                r.bias.map_or("-".into(), |b| format!("{b:+.1e}")),
-            );
-        }
-        println!(
-            "  against the reference figures (the peer crates' times on a reference 2-core machine, the paper's GPU"
-        );
-        println!("  speedups of its Table 1; the times are this machine's, in this run):");
-        println!(
-            "  {:<28} {:<24} {:>36}  reached",
-            "function", "reference", "this run"
-        );
-        for g in stochastic::goals(&rows) {
-            println!(
-                "  {:<28} {:<24} {:>36}  {}",
-                g.what,
-                g.goal,
-                g.measured,
-                if g.met { "yes" } else { "no" }
-            );
+        for line in stochastic::describe(&rows) {
+            println!("{line}");
         }
         rows_json = Some(serde_json::to_value(&rows).map_err(|e| e.to_string())?);
     }

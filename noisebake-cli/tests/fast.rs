@@ -9,7 +9,7 @@ fn run(params: &FastParams, dims: &[usize], seed: u64) -> fast::Outcome {
     fast::generate(params, dims, seed, &mut |_, _| {})
 }
 use noisebake_cli::analysis::filtered::{Denoiser, filtered_rmse};
-use noisebake_cli::report::fast::scalar_params;
+use noisebake_cli::report::kit::scalar_params;
 
 /// Scalar values of a baseline kind.
 fn baseline(kind: &str, dims: [usize; 3]) -> Vec<f64> {
@@ -104,7 +104,8 @@ fn paper_schedule_permutes_slices_and_lowers_the_loss_when_capped() {
 /// slice's histogram exactly flat, and has the lowest loss of the three.
 #[test]
 fn fast_for_the_measured_filter_beats_ign_and_stbn_with_flat_slices() {
-    use noisebake_cli::report::compare::{ign, loss_params, measure};
+    use noisebake_cli::report::compare::{loss_params, measure};
+    use noisebake_cli::report::kit::ign;
     let dims = [32usize, 32, 16];
     let tex = gen_tex(
         "kind = \"fast\"\ndims = [32, 32, 16]\nseed = 1\nformat = \"u8\"\nspatial_filter = { kind = \"gauss\", sigma = 1.3435 }\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.0 }",

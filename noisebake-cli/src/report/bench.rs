@@ -128,6 +128,17 @@ pub fn exponent(points: &[(f64, f64)]) -> f64 {
     sxy / sxx
 }
 
+/// The fitted exponents of time against texels, as text (the rows are printed as they run).
+pub fn describe_fits(b: &Bench) -> Vec<String> {
+    std::iter::once("  fitted exponent of time against texels (1 = linear):".to_string())
+        .chain(
+            b.fits
+                .iter()
+                .map(|f| format!("  {:<48} {} thr  {:.2}", f.case, f.threads, f.exponent)),
+        )
+        .collect()
+}
+
 /// Runs the benchmark (with `full`, also void and cluster at 2048²), logging each bake, and
 /// writes `bench.json` and `bench.png` into `out`.
 pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<Bench, String> {

@@ -1,6 +1,7 @@
 //! FAST report: optimisation time, loss and loss-against-time curves on 1 and 2 threads, and the
 //! error after the filter each mask was optimised for, against the baselines (FAST §6).
 
+use super::kit::scalar_params;
 use crate::analysis::filtered::{Denoiser, filtered_rmse};
 use crate::export::plot::{Labels, PALETTE, Series, line_plot};
 use build_assets::generate::fast::{
@@ -189,23 +190,6 @@ fn paper_run(
         }
     ));
     run
-}
-
-/// EA's published scalar texture's filter: Gaussian σ 1.3435 × EMA (α 0.1) with history
-/// rejection β 0.1 (eq. 17), product; the report times the optimiser on it.
-pub fn scalar_params(combine: Combine) -> FastParams {
-    FastParams {
-        sample_space: SampleSpace::Scalar,
-        distribution: fast::Distribution::Uniform,
-        spatial: Filter::Gauss { sigma: 1.3435 },
-        temporal: TemporalFilter::Ema {
-            alpha: 0.1,
-            beta: 0.1,
-        },
-        combine,
-        iterations: None,
-        start: fast::Start::Random,
-    }
 }
 
 /// The paper's timing case: cosine-hemisphere vectors, box 5×5 × EMA, product.
@@ -473,4 +457,23 @@ pub fn run(
         paper_full_size,
         comparison,
     })
+}
+
+/// The section's table of errors after filtering, as text.
+pub fn describe(r: &FastReport) -> Vec<String> {
+    let mut out = vec![
+        "  error after filtering, 64x64x16 scalar (steps, Gaussian σ 1.3435, EMA α 0.1):"
+            .to_string(),
+        format!(
+            "  {:<24} {:>14} {:>10} {:>14}",
+            "mask", "spatial+EMA", "EMA only", "spatial only"
+        ),
+    ];
+    for e in &r.errors {
+        out.push(format!(
+            "  {:<24} {:>14.5} {:>10.5} {:>14.5}",
+            e.mask, e.spatial_and_ema, e.ema_only, e.spatial_only
+        ));
+    }
+    out
 }

@@ -2,8 +2,10 @@
 //! next to the error it was bought with.
 
 pub mod bench;
+pub mod cnj;
 pub mod compare;
 pub mod fast;
+pub mod kit;
 pub mod sampler;
 pub mod stochastic;
 pub mod taa;

@@ -776,6 +776,73 @@ fn roulette_window(full_ns: f64, estimator_ns: f64, want: f64) -> String {
     )
 }
 
+/// The section as text: its legend, one line per row, and the reference figures against this
+/// run's.
+pub fn describe(rows: &[Row]) -> Vec<String> {
+    let mut out = vec![
+        "stochastic noise (3D unless named, single thread, random-order points):".to_string(),
+        "  (ns/eval: median of 9 rounds; speedup: our deterministic time / this one, the median over 9 rounds".to_string(),
+        "   of the two run in interleaved chunks of the same points; for peer crates below 1 when ours is faster)".to_string(),
+    ];
+    if !HAS_PEERS {
+        out.push("  (peers not compiled in: add `--features peers` to measure noise-functions and fastnoise-lite in this run)".to_string());
+    }
+    out.push("  (rmse@k: RMSE against the deterministic value of the mean of k estimates with white-noise ξ;".to_string());
+    out.push("   stbn@16: the same at 16 with ξ from a 2D×1D blue-noise mask; bias: mean error of many estimates, 0 when unbiased)".to_string());
+    out.push(format!(
+        "  {:<18} {:<20} {:>9} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10}",
+        "noise",
+        "variant",
+        "ns/eval",
+        "speedup",
+        "rmse@1",
+        "rmse@4",
+        "rmse@16",
+        "rmse@64",
+        "stbn@16",
+        "bias"
+    ));
+    let g = |m: &Option<std::collections::BTreeMap<String, f64>>, k: &str| {
+        m.as_ref()
+            .map_or("-".to_string(), |m| format!("{:.4}", m[k]))
+    };
+    for r in rows {
+        out.push(format!(
+            "  {:<18} {:<20} {:>9.1} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10}",
+            r.noise,
+            r.variant,
+            r.ns_per_eval,
+            r.speedup.map_or("-".into(), |s| if s < 10.0 {
+                format!("{s:.2}x")
+            } else {
+                format!("{s:.1}x")
+            }),
+            g(&r.rmse, "1"),
+            g(&r.rmse, "4"),
+            g(&r.rmse, "16"),
+            g(&r.rmse, "64"),
+            g(&r.rmse_stbn, "16"),
+            r.bias.map_or("-".into(), |b| format!("{b:+.1e}")),
+        ));
+    }
+    out.push("  against the reference figures (the peer crates' times on a reference 2-core machine, the paper's GPU".to_string());
+    out.push("  speedups of its Table 1; the times are this machine's, in this run):".to_string());
+    out.push(format!(
+        "  {:<28} {:<24} {:>36}  reached",
+        "function", "reference", "this run"
+    ));
+    for g in goals(rows) {
+        out.push(format!(
+            "  {:<28} {:<24} {:>36}  {}",
+            g.what,
+            g.goal,
+            g.measured,
+            if g.met { "yes" } else { "no" }
+        ));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

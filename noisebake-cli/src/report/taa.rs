@@ -8,7 +8,7 @@
 //! per frame and the R2 grid animated by the golden ratio; white noise for scale. All
 //! 128 × 128 × 64, made for (or measured after) a Gaussian σ 1.3435 with α 0.1.
 
-use super::compare::{bake, ea_path, ea_values, ign, r2, spec};
+use super::kit::{EA_MISSING, bake, ea_path, ea_values, ign, r2, spec};
 use crate::analysis::taa::{Clip, Taa, taa_rmse};
 use build_assets::generate::fast::{Filter, open_windows};
 use rayon::prelude::*;
@@ -216,7 +216,7 @@ pub fn run(out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
     }
     match ea_path() {
         Some(p) => rows.push(measure("FAST (EA, published)", &ea_values(&p)?)),
-        None => log(&format!("  {}", super::compare::EA_MISSING)),
+        None => log(&format!("  {}", EA_MISSING)),
     }
     let gold = baked("GOLD", "golden", "", log)?;
     rows.push(measure("golden-ratio animated blue noise", &gold));

@@ -18,7 +18,7 @@
 //! measured over the same 32 frames looped, the free constructions too (in a game they would
 //! not loop, which can only help them after an EMA).
 
-use super::compare::{bake, spec};
+use super::kit::{bake, spec};
 use crate::analysis::filtered::{Denoiser, filtered_rmse_integrands};
 use build_assets::generate::fast::Filter;
 use build_assets::spec::TextureSpec;
