@@ -202,9 +202,10 @@ pub(crate) use fix_lanes;
 mod tests {
     extern crate std;
     use super::super::estimators::ONE_BELOW;
-    use super::super::fractal::batch::{fbm3_batch_on, fbm3_stochastic_batch_on};
-    use super::super::fractal::{Fractal, fbm3, fbm3_stochastic};
+    use super::super::fractal::Fractal;
     use super::super::perlin::batch::{perlin3_batch_on, perlin3_stochastic_batch_on};
+    use super::super::perlin::fbm::{fbm3, fbm3_stochastic};
+    use super::super::perlin::fbm_batch::{fbm3_batch_on, fbm3_stochastic_batch_on};
     use super::super::perlin::{perlin3, perlin3_stochastic};
     use super::*;
     use std::{format, vec, vec::Vec};

@@ -71,6 +71,7 @@ mod batch;
 mod estimators;
 mod fractal;
 mod gabor;
+mod lattice;
 
 mod perlin;
 mod simplex;
@@ -112,11 +113,11 @@ mod noise;
 pub use estimators::{
     ONE_BELOW, bilerp_estimate, lerp_estimate, pick, russian_roulette, sanitize_xi,
 };
-pub use fractal::Fbm;
+pub use fractal::{Fbm, Octaves};
 pub use fractal::{Fractal, fractal, fractal_estimate, fractal_tail_estimate, octave_seed};
 pub use gabor::Gabor;
 pub use gabor::GaborNoise;
-pub use noise::{BatchLengths, Gradient, LatticePoint, Noise, Octaves};
+pub use noise::{BatchLengths, Gradient, LatticePoint, Noise};
 pub use perlin::Perlin;
 pub use simplex::Simplex;
 pub use sparse::{SparseConvolution, SparseConvolutionFbm};

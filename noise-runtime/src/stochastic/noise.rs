@@ -1,7 +1,9 @@
 //! The verbs every noise has, as traits: [`Noise`] (`sample`, the deterministic value, and
 //! `estimate`, the unbiased one-sample estimator from one ξ; batch forms over slices of
-//! points), [`Gradient`] (the analytic gradient, where the noise has one) and [`Octaves`] (a
-//! noise a fractal sum, [`Fbm`](super::Fbm), can be built from). Each noise type lives in its
+//! points) and [`Gradient`] (the analytic gradient, where the noise has one); the points they
+//! take ([`LatticePoint`], whose per-dimension dispatch is `lattice.rs`). The floor of the
+//! folder: it imports no noise. A noise a fractal sum can be built from implements
+//! [`Octaves`](super::Octaves) too, beside [`Fbm`](super::Fbm) in `fractal/`. Each noise type lives in its
 //! own folder with its lane and batch kernels and implements these traits; its inherent
 //! methods are the same functions, callable without importing a trait. A noise value is its
 //! parameters (the seed among them, fixed at construction); the point comes first in every
@@ -20,9 +22,6 @@
 //! let mean = (0..256).map(|i| fbm.estimate(p, (i as f32 + 0.5) / 256.0)).sum::<f32>() / 256.0;
 //! assert!((mean - fbm.sample(p)).abs() < 0.1);
 //! ```
-
-use super::fractal::{self, Fractal};
-use super::{perlin, simplex};
 
 mod sealed {
     pub trait Sealed {}
@@ -98,76 +97,6 @@ pub trait LatticePoint: sealed::Sealed + Copy {
     }
 }
 
-macro_rules! lattice_point {
-    ($n:literal, $perlin:ident, $pe:ident, $pg:ident, $simplex:ident, $se:ident, $sg:ident $(, $lanes:ident)?) => {
-        impl LatticePoint for [f32; $n] {
-            $(
-                #[inline]
-                fn perlin_batch(points: &[Self], seed: u32, out: &mut [f32]) {
-                    let _ = stringify!($lanes);
-                    perlin::batch::perlin3_batch(points, seed, out);
-                }
-                #[inline]
-                fn perlin_estimate_batch(points: &[Self], seed: u32, xi: &[f32], out: &mut [f32]) {
-                    perlin::batch::perlin3_stochastic_batch(points, seed, xi, out);
-                }
-            )?
-            #[inline(always)]
-            fn perlin(self, seed: u32) -> f32 {
-                perlin::$perlin(self, seed)
-            }
-            #[inline(always)]
-            fn perlin_estimate(self, seed: u32, xi: f32) -> f32 {
-                perlin::$pe(self, seed, xi)
-            }
-            #[inline(always)]
-            fn perlin_gradient(self, seed: u32) -> (f32, Self) {
-                perlin::$pg(self, seed)
-            }
-            #[inline(always)]
-            fn simplex(self, seed: u32) -> f32 {
-                simplex::$simplex(self, seed)
-            }
-            #[inline(always)]
-            fn simplex_estimate(self, seed: u32, xi: f32) -> f32 {
-                simplex::$se(self, seed, xi)
-            }
-            #[inline(always)]
-            fn simplex_gradient(self, seed: u32) -> (f32, Self) {
-                simplex::$sg(self, seed)
-            }
-        }
-    };
-}
-lattice_point!(
-    2,
-    perlin2,
-    perlin2_stochastic,
-    perlin2_grad,
-    simplex2,
-    simplex2_stochastic,
-    simplex2_grad
-);
-lattice_point!(
-    3,
-    perlin3,
-    perlin3_stochastic,
-    perlin3_grad,
-    simplex3,
-    simplex3_stochastic,
-    simplex3_grad,
-    lanes
-);
-lattice_point!(
-    4,
-    perlin4,
-    perlin4_stochastic,
-    perlin4_grad,
-    simplex4,
-    simplex4_stochastic,
-    simplex4_grad
-);
-
 /// The verbs every noise has at points of type `P`: the deterministic value and an unbiased
 /// one-sample estimate of it (Fajardo & Pharr: `E_ξ[estimate(p, ξ)] = sample(p)` for `ξ`
 /// uniform in `[0, 1]`), and their batch forms. Object safe, so a renderer or a report can keep
@@ -210,73 +139,4 @@ pub trait Noise<P: Copy> {
 pub trait Gradient<P: Copy>: Noise<P> {
     /// The noise and its gradient at `p`.
     fn gradient(&self, p: P) -> (f32, P);
-}
-
-/// A 3D noise a fractal sum can be built from: `Σ_o gain^o · octave(o)(p · lacunarity^o)`
-/// (eq. 9), each octave the same noise with its own seed ([`octave_seed`](super::octave_seed)). The sums and their
-/// estimators have generic forms here (Algorithm 2 and the tail and octave estimators of
-/// [`fractal`](fn@super::fractal), [`fractal_tail_estimate`](super::fractal_tail_estimate)); a
-/// noise with faster kernels for them (3D Perlin: lanes, batch kernels) overrides them with
-/// the same values.
-pub trait Octaves: Noise<[f32; 3]> + Sized {
-    /// Octave `o`: this noise with the seed `octave_seed(seed, o)`.
-    fn octave(&self, o: u32) -> Self;
-
-    /// The fractal sum at `p`.
-    fn fbm_sample(&self, f: Fractal, p: [f32; 3]) -> f32 {
-        fractal::fractal(p, f, |q, o| self.octave(o).sample(q))
-    }
-
-    /// One octave chosen by ξ (weight `|gain^o|`), estimated with the remapped ξ.
-    fn fbm_estimate(&self, f: Fractal, p: [f32; 3], xi: f32) -> f32 {
-        fractal::fractal_estimate(p, f, xi, |q, o, x| self.octave(o).estimate(q, x))
-    }
-
-    /// The first `exact` octaves exact and one octave of the rest estimated.
-    fn fbm_estimate_tail(&self, f: Fractal, p: [f32; 3], exact: u32, xi: f32) -> f32 {
-        fractal::fractal_tail_estimate(
-            p,
-            f,
-            exact,
-            xi,
-            |q, o| self.octave(o).sample(q),
-            |q, o, x| self.octave(o).estimate(q, x),
-        )
-    }
-
-    /// The first `exact` octaves exact and one octave of the rest chosen by ξ and evaluated
-    /// exactly.
-    fn fbm_estimate_octave(&self, f: Fractal, p: [f32; 3], exact: u32, xi: f32) -> f32 {
-        let exact_octave = |q: [f32; 3], o: u32| self.octave(o).sample(q);
-        fractal::fractal_tail_estimate(p, f, exact, xi, exact_octave, |q, o, _| exact_octave(q, o))
-    }
-
-    /// [`fbm_sample`](Self::fbm_sample) of every point (lengths as [`Noise::sample_batch`]).
-    fn fbm_sample_batch(
-        &self,
-        f: Fractal,
-        points: &[[f32; 3]],
-        out: &mut [f32],
-    ) -> Result<(), BatchLengths> {
-        BatchLengths::check(points.len(), None, out.len())?;
-        for (o, &p) in out.iter_mut().zip(points) {
-            *o = self.fbm_sample(f, p);
-        }
-        Ok(())
-    }
-
-    /// [`fbm_estimate`](Self::fbm_estimate) of every point with its own ξ.
-    fn fbm_estimate_batch(
-        &self,
-        f: Fractal,
-        points: &[[f32; 3]],
-        xi: &[f32],
-        out: &mut [f32],
-    ) -> Result<(), BatchLengths> {
-        BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
-        for ((o, &p), &x) in out.iter_mut().zip(points).zip(xi) {
-            *o = self.fbm_estimate(f, p, x);
-        }
-        Ok(())
-    }
 }

@@ -10,9 +10,7 @@
 //! `w^0 … w^(n−1)` is `(1 − w^n)/(1 − w)`, which is what we use (summed directly, so gain → 1
 //! and gain = 0 need no special case).
 
-pub(crate) mod batch;
 use super::estimators::{ONE_BELOW, sanitize_xi};
-use super::perlin::perlin3_stochastic;
 
 /// Octaves, lacunarity (frequency factor per octave) and gain (amplitude factor per octave).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -198,7 +196,7 @@ impl OctavePick {
     /// products run side by side, where the difference first waited on `S_o`. This is the
     /// chain from ξ to the octave's noise, which the fBm estimator's time is.
     #[inline(always)]
-    fn halving(n: u32, gain: f32, xi: f32) -> Self {
+    pub(crate) fn halving(n: u32, gain: f32, xi: f32) -> Self {
         // Σ_(o<n) 2^−o = 2 − 2^(1−n), computed in f32 as the running sum rounds it: exact up to
         // n = 24, and 2 from n = 25 (2 − 2^−24 is a tie that rounds to even, 2), where the sum
         // also stops growing. A closed form, not the loop: with a `Fractal` that is not a
@@ -246,107 +244,78 @@ pub fn octave_seed(seed: u32, o: u32) -> u32 {
     seed.wrapping_add(o.wrapping_mul(0x9e37_79b9))
 }
 
-/// fBm of 3D Perlin noise (each octave with its own seed).
-#[inline(always)]
-pub fn fbm3(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
-    fbm3_lanes(p, f, seed)
-}
-
-/// [`fbm3`] with the point kept in one register: each octave scales it by its frequency
-/// there, instead of scaling three scalars and loading them into lanes again for
-/// [`perlin3`](super::perlin::perlin3)'s lane form. The same products and sums as [`fractal`], so the
-/// same bits (lane 3 of the register is 0 times the frequency, which the lane form ignores).
-/// (Ten octaves: 1618 instead of 1745 instructions a call, 4.5 % faster.)
-#[inline(always)]
-fn fbm3_lanes(p: [f32; 3], f: Fractal, seed: u32) -> f32 {
-    use crate::lanes::F4;
-    let (n, lac, gain) = f.sane();
-    let v = F4::from3(p);
-    let (mut amp, mut freq, mut sum) = (1.0f32, 1.0f32, 0.0f32);
-    for o in 0..n {
-        let q = v * F4::splat(freq);
-        sum += amp * super::perlin::lanes::perlin3_lanes(q, octave_seed(seed, o));
-        amp *= gain;
-        freq *= lac;
-    }
-    sum
-}
-
-/// One-sample estimator of [`fbm3`]: one octave, and in it one Perlin gradient — one hash and
-/// one dot product whatever the octave count.
-#[inline(always)]
-pub fn fbm3_stochastic(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> f32 {
-    if let Some(v) = fbm3_stochastic_halving(p, f, seed, xi) {
-        return v;
-    }
-    let k = OctavePick::new(f, xi);
-    k.scale(perlin3_stochastic(
-        k.point(p),
-        octave_seed(seed, k.octave),
-        k.xi,
-    ))
-}
-
-/// [`fbm3`] with its first `exact` octaves exact and one octave of the rest sampled
-/// ([`fractal_tail_estimate`]): `exact` Perlin evaluations and one gradient.
-#[inline]
-pub fn fbm3_tail_stochastic(p: [f32; 3], f: Fractal, exact: u32, seed: u32, xi: f32) -> f32 {
-    fractal_tail_estimate(
-        p,
-        f,
-        exact,
-        xi,
-        |q, o| super::perlin::perlin3(q, octave_seed(seed, o)),
-        |q, o, x| perlin3_stochastic(q, octave_seed(seed, o), x),
-    )
-}
-
-/// [`fbm3`] with its first `exact` octaves exact and one octave of the rest chosen by ξ
-/// (Algorithm 2's choice, weight `|gain^o|`) and evaluated exactly: only the octave choice is
-/// random, not the corner. For Perlin noise on a CPU the one-gradient estimator saves little
-/// over a full `perlin3` (8 corners in SIMD lanes) but adds the corner choice's variance, so
-/// inside a renderer this is usually the better trade (`cargo run --release --example cloud`).
-#[inline]
-pub fn fbm3_octave_stochastic(p: [f32; 3], f: Fractal, exact: u32, seed: u32, xi: f32) -> f32 {
-    let perlin = |q: [f32; 3], o: u32| super::perlin::perlin3(q, octave_seed(seed, o));
-    fractal_tail_estimate(p, f, exact, xi, perlin, |q, o, _| perlin(q, o))
-}
-
-/// [`fbm3_stochastic`] for lacunarity 2, gain ±½ and a point whose finest octave
-/// `q = p · 2^(n−1)` is in the split range; `None` otherwise. The same bits, with the point's
-/// split taken off the chain from ξ: `q` is split before the octave `o` is known, and octave
-/// `o`'s cell and offset follow from it exactly, with `s = n − 1 − o`, as `⌊cell_q / 2^s⌋`
-/// and `((cell_q mod 2^s) + f_q) / 2^s`. (The sum is `q mod 2^s`, a truncation of `q`'s
-/// mantissa, so it is exact, and so is the power-of-two scaling.) The split of `p · 2^o`
-/// would otherwise wait for the octave, and the estimator's time is that chain (the gain is
-/// in `noisebake report stochastic`'s fBm rows).
-#[inline(always)]
-fn fbm3_stochastic_halving(p: [f32; 3], f: Fractal, seed: u32, xi: f32) -> Option<f32> {
-    use crate::lanes::{self, F4};
-    let (n, lac, gain) = f.sane();
-    if !(lac == 2.0 && (gain == 0.5 || gain == -0.5)) {
-        return None;
-    }
-    let pow2 = |e: i32| f32::from_bits(((127 + e) as u32) << 23);
-    let q = F4::from3(p) * F4::splat(pow2(n as i32 - 1));
-    if !lanes::in_split_range(q) {
-        return None;
-    }
-    let (cell_q, f_q) = lanes::split_in_range(q);
-    let k = OctavePick::halving(n, gain, xi);
-    let s = n - 1 - k.octave;
-    let cell = cell_q.floor_div_pow2(s);
-    let off = (cell_q.mod_pow2(s).to_f32() + f_q) * F4::splat(pow2(-(s as i32)));
-    // The remapped ξ is in [0, 1) by construction, so it needs no sanitising.
-    let n = super::estimators::Narrowing::new_unit(k.xi);
-    let v =
-        super::perlin::lanes::perlin3_stochastic_cell(cell, off, octave_seed(seed, k.octave), n);
-    Some(k.scale(v))
-}
-
-// The type and its verbs.
+// The traits and the type.
 use super::Perlin;
-use super::noise::{BatchLengths, Noise, Octaves};
+use super::noise::{BatchLengths, Noise};
+
+/// A 3D noise a fractal sum can be built from: `Σ_o gain^o · octave(o)(p · lacunarity^o)`
+/// (eq. 9), each octave the same noise with its own seed ([`octave_seed`]). The sums and their
+/// estimators have generic forms here (Algorithm 2 and the tail and octave estimators of
+/// [`fractal`](fn@fractal), [`fractal_tail_estimate`]); a
+/// noise with faster kernels for them (3D Perlin: lanes, batch kernels) overrides them with
+/// the same values.
+pub trait Octaves: Noise<[f32; 3]> + Sized {
+    /// Octave `o`: this noise with the seed `octave_seed(seed, o)`.
+    fn octave(&self, o: u32) -> Self;
+
+    /// The fractal sum at `p`.
+    fn fbm_sample(&self, f: Fractal, p: [f32; 3]) -> f32 {
+        fractal(p, f, |q, o| self.octave(o).sample(q))
+    }
+
+    /// One octave chosen by ξ (weight `|gain^o|`), estimated with the remapped ξ.
+    fn fbm_estimate(&self, f: Fractal, p: [f32; 3], xi: f32) -> f32 {
+        fractal_estimate(p, f, xi, |q, o, x| self.octave(o).estimate(q, x))
+    }
+
+    /// The first `exact` octaves exact and one octave of the rest estimated.
+    fn fbm_estimate_tail(&self, f: Fractal, p: [f32; 3], exact: u32, xi: f32) -> f32 {
+        fractal_tail_estimate(
+            p,
+            f,
+            exact,
+            xi,
+            |q, o| self.octave(o).sample(q),
+            |q, o, x| self.octave(o).estimate(q, x),
+        )
+    }
+
+    /// The first `exact` octaves exact and one octave of the rest chosen by ξ and evaluated
+    /// exactly.
+    fn fbm_estimate_octave(&self, f: Fractal, p: [f32; 3], exact: u32, xi: f32) -> f32 {
+        let exact_octave = |q: [f32; 3], o: u32| self.octave(o).sample(q);
+        fractal_tail_estimate(p, f, exact, xi, exact_octave, |q, o, _| exact_octave(q, o))
+    }
+
+    /// [`fbm_sample`](Self::fbm_sample) of every point (lengths as [`Noise::sample_batch`]).
+    fn fbm_sample_batch(
+        &self,
+        f: Fractal,
+        points: &[[f32; 3]],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), None, out.len())?;
+        for (o, &p) in out.iter_mut().zip(points) {
+            *o = self.fbm_sample(f, p);
+        }
+        Ok(())
+    }
+
+    /// [`fbm_estimate`](Self::fbm_estimate) of every point with its own ξ.
+    fn fbm_estimate_batch(
+        &self,
+        f: Fractal,
+        points: &[[f32; 3]],
+        xi: &[f32],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
+        BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
+        for ((o, &p), &x) in out.iter_mut().zip(points).zip(xi) {
+            *o = self.fbm_estimate(f, p, x);
+        }
+        Ok(())
+    }
+}
 
 /// A fractal sum (fBm) of a noise: `Σ_o gain^o · octave(o)(p · lacunarity^o)` with an
 /// independent seed per octave (eq. 9); its estimators choose octaves by their weight
@@ -463,88 +432,7 @@ impl<N: Octaves> Noise<[f32; 3]> for Fbm<N> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::perlin::perlin3;
     use super::*;
-
-    /// The fBm estimator's shortcut (one split at the finest octave) returns what
-    /// the generic estimator returns, bit for bit: every octave count, both signs of gain,
-    /// points at and next to lattice planes of every octave, at the edge of the shortcut's
-    /// range, and random ones, with hard and random ξ.
-    #[test]
-    fn fbm3_estimator_is_the_generic_one_bit_for_bit() {
-        let mut next = super::super::uniforms(0x510e_527f_ade6_82d1);
-        let xis = [0.0f32, -0.0, 1e-30, 0.5, ONE_BELOW, 1.0, 2.0, f32::NAN];
-        for n in 1..=32u32 {
-            for gain in [0.5f32, -0.5] {
-                let f = Fractal::new(n, 2.0, gain);
-                let edge = 4_194_303.5 / f32::from_bits((126 + n) << 23);
-                let mut hard = [0.0f32, -0.0, 1e-45, edge, -edge, 1.0, -1.0, 0.375, -0.625];
-                for h in hard.iter_mut().skip(5) {
-                    *h = f32::from_bits(h.to_bits() + 1);
-                }
-                let check = |p: [f32; 3], xi: f32| {
-                    let seed = p[0].to_bits() ^ n;
-                    let got = fbm3_stochastic(p, f, seed, xi);
-                    let want = fractal_estimate(p, f, xi, |q, o, x| {
-                        perlin3_stochastic(q, octave_seed(seed, o), x)
-                    });
-                    assert_eq!(
-                        got.to_bits(),
-                        want.to_bits(),
-                        "n {n}, gain {gain}, p {p:?}, ξ {xi:e}"
-                    );
-                };
-                for i in 0..hard.len().pow(3) {
-                    let p = [hard[i % 9], hard[i / 9 % 9], hard[i / 81]];
-                    check(p, xis[i % xis.len()]);
-                    check(p, next());
-                }
-                for _ in 0..3000 {
-                    let p = [0; 3].map(|_| (next() - 0.5) * 200.0);
-                    check(p, next());
-                }
-            }
-        }
-    }
-
-    /// The lane form of the deterministic fBm returns what [`fractal`] over
-    /// [`perlin3`](super::super::perlin3) returns, bit for bit: octave counts 1–32,
-    /// ordinary, negative, huge and NaN parameters (frequencies that overflow, points that
-    /// leave the split range at some octave), hard and random points.
-    #[test]
-    fn fbm3_is_the_generic_fractal_sum_bit_for_bit() {
-        let mut next = super::super::uniforms(0x9b05_688c_1f83_d9ab);
-        let params = [
-            (2.0f32, 0.5f32),
-            (2.0, -0.5),
-            (1.93, 0.6),
-            (-2.5, 0.7),
-            (0.5, 1.0),
-            (1024.0, 16.0),
-            (f32::NAN, f32::NAN),
-            (1.0, 0.0),
-        ];
-        for n in 1..=32u32 {
-            for (k, &(lac, gain)) in params.iter().enumerate() {
-                let f = Fractal::new(n, lac, gain);
-                for i in 0..200 {
-                    let p = match i % 4 {
-                        0 => [0.0, -0.0, 1e-45],
-                        1 => [4_194_303.5, -1.0, 0.5].map(|c| c / (1 + i) as f32),
-                        _ => [0; 3].map(|_| (next() - 0.5) * 200.0),
-                    };
-                    let seed = (n * 31 + k as u32) ^ i;
-                    let want = fractal(p, f, |q, o| perlin3(q, octave_seed(seed, o)));
-                    let got = fbm3(p, f, seed);
-                    assert_eq!(
-                        got.to_bits(),
-                        want.to_bits(),
-                        "n {n}, lacunarity {lac}, gain {gain}, p {p:?}: {got} vs {want}"
-                    );
-                }
-            }
-        }
-    }
 
     /// The exponent-bit form for lacunarity 2 and gain ±½ picks what the table form picks:
     /// the same octave, frequency, remapped ξ, weight and sign, bit for bit, for every octave

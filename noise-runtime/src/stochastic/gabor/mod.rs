@@ -9,6 +9,7 @@
 //! call) as the tables' reference.
 
 use super::estimators::sanitize_xi;
+use super::noise::Noise;
 use super::sparse::{Reach, flip, importance_index, impulse, rotate, unit_bits};
 use crate::math::{cos_turns, exp_neg, sqrt};
 
@@ -345,9 +346,6 @@ fn estimate(
     sum
 }
 
-// The type and its verbs.
-use super::gabor;
-use super::noise::Noise;
 /// 3D Gabor noise (Lagae et al. 2009) with its parameters and seed. Building it prepares the
 /// impulse-count tables (about 10 µs): build it once and sample it many times. Its estimator
 /// evaluates one impulse per cell.
@@ -361,15 +359,15 @@ use super::noise::Noise;
 /// ```
 #[derive(Clone, Debug)]
 pub struct GaborNoise {
-    noise: gabor::GaborTables,
+    noise: GaborTables,
     seed: u32,
 }
 
 impl GaborNoise {
     /// Gabor noise with parameters `g` and this seed.
-    pub fn new(g: gabor::Gabor, seed: u32) -> GaborNoise {
+    pub fn new(g: Gabor, seed: u32) -> GaborNoise {
         GaborNoise {
-            noise: gabor::GaborTables::new(g),
+            noise: GaborTables::new(g),
             seed,
         }
     }

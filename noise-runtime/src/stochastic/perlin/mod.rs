@@ -5,10 +5,15 @@
 //! is evaluated.
 
 pub(crate) mod batch;
+pub(crate) mod fbm;
+pub(crate) mod fbm_batch;
 use super::estimators::{Narrowing, fresh_corner2, unit_corner};
+use super::fractal::{Fractal, Octaves, octave_seed};
+use super::noise::{BatchLengths, Gradient, LatticePoint, Noise};
 use crate::gradients;
 use crate::hash::{CORNER_MUL, PRIME, corner};
 use crate::math::{dfade, fade, split};
+use fbm::{fbm3, fbm3_octave_stochastic, fbm3_stochastic, fbm3_tail_stochastic};
 
 pub(super) mod lanes;
 
@@ -258,12 +263,6 @@ pub fn perlin4_stochastic(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     lanes::perlin4_stochastic(p, seed, xi)
 }
 
-// The type and its verbs.
-use super::fractal::{
-    Fractal, fbm3, fbm3_octave_stochastic, fbm3_stochastic, fbm3_tail_stochastic, octave_seed,
-};
-use super::noise::{BatchLengths, Gradient, LatticePoint, Noise, Octaves};
-use super::perlin;
 /// Improved Perlin noise (Perlin 2002) in 2D, 3D or 4D, about `[-1, 1]`; its estimator evaluates
 /// one lattice gradient of the `2^d` (Fajardo & Pharr, Algorithm 1).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -305,30 +304,34 @@ impl Perlin {
     #[must_use]
     #[inline]
     pub fn gradient_in_cell(self, cell: [i32; 3], f: [f32; 3]) -> (f32, [f32; 3]) {
-        perlin::perlin3_grad_cell(cell, f, self.seed)
+        perlin3_grad_cell(cell, f, self.seed)
     }
 
-    /// [`sample`](Self::sample) of many 3D points into `out` (eight per AVX2 instruction where
-    /// the CPU has it), bit for bit the single-point values. Slices of different lengths are
-    /// an error, and nothing is written.
+    /// [`sample`](Self::sample) of many points into `out`, bit for bit the single-point
+    /// values (3D points eight per AVX2 instruction where the CPU has it). Slices of different
+    /// lengths are an error, and nothing is written.
     #[inline]
-    pub fn sample_batch(self, points: &[[f32; 3]], out: &mut [f32]) -> Result<(), BatchLengths> {
+    pub fn sample_batch<P: LatticePoint>(
+        self,
+        points: &[P],
+        out: &mut [f32],
+    ) -> Result<(), BatchLengths> {
         BatchLengths::check(points.len(), None, out.len())?;
-        perlin::batch::perlin3_batch(points, self.seed, out);
+        P::perlin_batch(points, self.seed, out);
         Ok(())
     }
 
-    /// [`estimate`](Self::estimate) of many 3D points, one ξ each, into `out`. Slices of
+    /// [`estimate`](Self::estimate) of many points, one ξ each, into `out`. Slices of
     /// different lengths are an error, and nothing is written.
     #[inline]
-    pub fn estimate_batch(
+    pub fn estimate_batch<P: LatticePoint>(
         self,
-        points: &[[f32; 3]],
+        points: &[P],
         xi: &[f32],
         out: &mut [f32],
     ) -> Result<(), BatchLengths> {
         BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
-        perlin::batch::perlin3_stochastic_batch(points, self.seed, xi, out);
+        P::perlin_estimate_batch(points, self.seed, xi, out);
         Ok(())
     }
 }
@@ -344,9 +347,7 @@ impl<P: LatticePoint> Noise<P> for Perlin {
     }
     #[inline]
     fn sample_batch(&self, points: &[P], out: &mut [f32]) -> Result<(), BatchLengths> {
-        BatchLengths::check(points.len(), None, out.len())?;
-        P::perlin_batch(points, self.seed, out);
-        Ok(())
+        Perlin::sample_batch(*self, points, out)
     }
     #[inline]
     fn estimate_batch(
@@ -355,9 +356,7 @@ impl<P: LatticePoint> Noise<P> for Perlin {
         xi: &[f32],
         out: &mut [f32],
     ) -> Result<(), BatchLengths> {
-        BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
-        P::perlin_estimate_batch(points, self.seed, xi, out);
-        Ok(())
+        Perlin::estimate_batch(*self, points, xi, out)
     }
 }
 
@@ -399,7 +398,7 @@ impl Octaves for Perlin {
         out: &mut [f32],
     ) -> Result<(), BatchLengths> {
         BatchLengths::check(points.len(), None, out.len())?;
-        super::fractal::batch::fbm3_batch(points, f, self.seed, out);
+        fbm_batch::fbm3_batch(points, f, self.seed, out);
         Ok(())
     }
     #[inline]
@@ -411,7 +410,7 @@ impl Octaves for Perlin {
         out: &mut [f32],
     ) -> Result<(), BatchLengths> {
         BatchLengths::check(points.len(), Some(xi.len()), out.len())?;
-        super::fractal::batch::fbm3_stochastic_batch(points, f, self.seed, xi, out);
+        fbm_batch::fbm3_stochastic_batch(points, f, self.seed, xi, out);
         Ok(())
     }
 }

@@ -14,6 +14,9 @@
 
 #[cfg(test)]
 use super::estimators::sanitize_xi;
+use super::fractal::Octaves;
+use super::fractal::octave_seed;
+use super::noise::{Gradient, LatticePoint, Noise};
 use crate::gradients;
 use crate::hash::{CORNER_MUL, PRIME, hash3};
 #[cfg(test)]
@@ -247,9 +250,6 @@ fn simplex4_stochastic_scalar(p: [f32; 4], seed: u32, xi: f32) -> f32 {
     Corners::<4, 5>::new(p, SKEW4).stochastic(SCALE4, xi, |c| grad4(c, seed))
 }
 
-// The type and its verbs.
-use super::fractal::octave_seed;
-use super::noise::{Gradient, LatticePoint, Noise, Octaves};
 /// Simplex noise (Perlin 2001; Gustavson's formulation) in 2D, 3D or 4D; its estimator picks
 /// one simplex corner by its kernel weight.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -5,7 +5,9 @@
 //! (probability `(2i + 1)/n²`), giving eq. (8): `½ Σ_c ±k(|p − p_(i,c)|)`.
 
 use super::estimators::sanitize_xi;
+use super::fractal::Octaves;
 use super::fractal::{Fractal, fractal, fractal_estimate, fractal_tail_estimate, octave_seed};
+use super::noise::Noise;
 use crate::hash::{PRIME, corner};
 use crate::math::{in_split_range, split, split_in_range};
 
@@ -339,9 +341,6 @@ pub fn fbm_sparse_conv3_stochastic1(p: [f32; 3], f: Fractal, n: u32, seed: u32, 
     })
 }
 
-// The type and its verbs.
-use super::noise::{Noise, Octaves};
-use super::sparse;
 /// Sparse convolution noise (Lewis 1989): `impulses` random impulses per cell convolved with a
 /// quintic kernel (eq. 7). The estimator evaluates one impulse per cell (eq. 8); the one-term
 /// estimator samples the 27-cell sum too.
@@ -363,21 +362,21 @@ impl SparseConvolution {
     #[must_use]
     #[inline]
     pub fn sample(self, p: [f32; 3]) -> f32 {
-        sparse::sparse_conv3(p, self.impulses, self.seed)
+        sparse_conv3(p, self.impulses, self.seed)
     }
 
     /// One impulse per cell (eq. 8), unbiased.
     #[must_use]
     #[inline]
     pub fn estimate(self, p: [f32; 3], xi: f32) -> f32 {
-        sparse::sparse_conv3_stochastic(p, self.impulses, self.seed, xi)
+        sparse_conv3_stochastic(p, self.impulses, self.seed, xi)
     }
 
     /// One impulse of one cell: one kernel evaluation, much more variance.
     #[must_use]
     #[inline]
     pub fn estimate_one_term(self, p: [f32; 3], xi: f32) -> f32 {
-        sparse::sparse_conv3_stochastic1(p, self.impulses, self.seed, xi)
+        sparse_conv3_stochastic1(p, self.impulses, self.seed, xi)
     }
 }
 
@@ -406,35 +405,28 @@ impl SparseConvolutionFbm {
     #[must_use]
     #[inline]
     pub fn sample(self, p: [f32; 3]) -> f32 {
-        sparse::fbm_sparse_conv3(p, self.fractal, self.impulses, self.seed)
+        fbm_sparse_conv3(p, self.fractal, self.impulses, self.seed)
     }
 
     /// One octave (Algorithm 2) and in it one impulse per cell.
     #[must_use]
     #[inline]
     pub fn estimate(self, p: [f32; 3], xi: f32) -> f32 {
-        sparse::fbm_sparse_conv3_stochastic(p, self.fractal, self.impulses, self.seed, xi)
+        fbm_sparse_conv3_stochastic(p, self.fractal, self.impulses, self.seed, xi)
     }
 
     /// One octave and in it one impulse of one cell.
     #[must_use]
     #[inline]
     pub fn estimate_one_term(self, p: [f32; 3], xi: f32) -> f32 {
-        sparse::fbm_sparse_conv3_stochastic1(p, self.fractal, self.impulses, self.seed, xi)
+        fbm_sparse_conv3_stochastic1(p, self.fractal, self.impulses, self.seed, xi)
     }
 
     /// The first `exact` octaves exact, one octave of the rest sampled, one impulse per cell.
     #[must_use]
     #[inline]
     pub fn estimate_tail(self, p: [f32; 3], exact: u32, xi: f32) -> f32 {
-        sparse::fbm_sparse_conv3_tail_stochastic(
-            p,
-            self.fractal,
-            exact,
-            self.impulses,
-            self.seed,
-            xi,
-        )
+        fbm_sparse_conv3_tail_stochastic(p, self.fractal, exact, self.impulses, self.seed, xi)
     }
 
     /// The first `exact` octaves exact, one octave of the rest chosen by ξ and evaluated
@@ -443,7 +435,7 @@ impl SparseConvolutionFbm {
     #[inline]
     pub fn estimate_octave(self, p: [f32; 3], exact: u32, xi: f32) -> f32 {
         let octave =
-            |q: [f32; 3], o: u32| sparse::sparse_conv3(q, self.impulses, octave_seed(self.seed, o));
+            |q: [f32; 3], o: u32| sparse_conv3(q, self.impulses, octave_seed(self.seed, o));
         fractal_tail_estimate(p, self.fractal, exact, xi, octave, |q, o, _| octave(q, o))
     }
 }

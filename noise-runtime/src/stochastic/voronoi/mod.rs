@@ -6,6 +6,9 @@
 //! its branches mispredict, which costs more on a CPU.
 
 use super::estimators::{roulette_in_range, sanitize_xi};
+use super::fractal::Octaves;
+use super::fractal::octave_seed;
+use super::noise::Noise;
 use crate::hash::{PRIME, corner, point3};
 use crate::lanes::{self, F4, I4};
 #[cfg(test)]
@@ -288,10 +291,6 @@ fn picked_distance_lanes(cell: I4, f: F4, seed: u32, bits: u32) -> f32 {
     (d * d).sum3_x().sqrt().x()
 }
 
-// The type and its verbs.
-use super::fractal::octave_seed;
-use super::noise::{Noise, Octaves};
-use super::voronoi;
 /// Smooth Voronoi noise (eq. 12): a soft minimum of the distances to the feature points of the
 /// 27 cells around `p`; its estimator evaluates the nearest cells exactly and the rest by
 /// Russian roulette (Algorithm 3).
@@ -311,7 +310,7 @@ impl SmoothVoronoi {
     #[must_use]
     #[inline]
     pub fn sample(self, p: [f32; 3]) -> f32 {
-        voronoi::smooth_voronoi3(p, self.seed)
+        smooth_voronoi3(p, self.seed)
     }
 
     /// An unbiased estimate with the paper's roulette probability
@@ -319,7 +318,7 @@ impl SmoothVoronoi {
     #[must_use]
     #[inline]
     pub fn estimate(self, p: [f32; 3], xi: f32) -> f32 {
-        voronoi::smooth_voronoi3_stochastic(p, self.seed, super::SMOOTH_VORONOI_Q, xi)
+        smooth_voronoi3_stochastic(p, self.seed, super::SMOOTH_VORONOI_Q, xi)
     }
 
     /// An unbiased estimate with roulette probability `q` (higher: more exact work, less
@@ -327,7 +326,7 @@ impl SmoothVoronoi {
     #[must_use]
     #[inline]
     pub fn estimate_with(self, p: [f32; 3], q: f32, xi: f32) -> f32 {
-        voronoi::smooth_voronoi3_stochastic(p, self.seed, q, xi)
+        smooth_voronoi3_stochastic(p, self.seed, q, xi)
     }
 }
 
@@ -348,14 +347,14 @@ impl Worley {
     #[must_use]
     #[inline]
     pub fn f1(self, p: [f32; 3]) -> f32 {
-        voronoi::worley3_f1(p, self.seed)
+        worley3_f1(p, self.seed)
     }
 
     /// The feature point of a cell.
     #[must_use]
     #[inline]
     pub fn feature_point(self, cell: [i32; 3]) -> [f32; 3] {
-        voronoi::feature_point3(cell, self.seed)
+        feature_point3(cell, self.seed)
     }
 }
 

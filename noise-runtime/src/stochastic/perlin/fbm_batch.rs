@@ -1,10 +1,11 @@
-//! The fBm batch kernels on eight lanes: the octaves of [`super::fbm3`] in its order, each
+//! The fBm batch kernels on eight lanes: the octaves of [`fbm3`](super::fbm::fbm3) in its order, each
 //! octave's points on the Perlin lane kernels (`perlin/batch.rs`).
 
 use super::super::batch::{Path, W, chunks, columns, on_lanes, outside};
 use super::super::estimators::sanitize_xi;
-use super::super::perlin::batch::{perlin3_lanes, perlin3_stochastic_lanes};
-use super::{Fractal, octave_seed};
+use super::super::fractal::{Fractal, octave_seed};
+use super::batch::{perlin3_lanes, perlin3_stochastic_lanes};
+use super::fbm as single;
 use crate::lanes::{F8, Lanes8};
 
 /// [`fbm3_batch`] on eight lanes: `fbm3`'s octaves in its order, each
@@ -31,7 +32,7 @@ pub(crate) fn fbm3<L: Lanes8>(cpu: L, points: &[[f32; 3]], f: Fractal, seed: u32
                 if bad != 0 {
                     for (i, v) in v.iter_mut().enumerate() {
                         if bad >> i & 1 == 1 {
-                            *v = super::super::perlin::perlin3([q[0][i], q[1][i], q[2][i]], s);
+                            *v = super::perlin3([q[0][i], q[1][i], q[2][i]], s);
                         }
                     }
                 }
@@ -43,7 +44,7 @@ pub(crate) fn fbm3<L: Lanes8>(cpu: L, points: &[[f32; 3]], f: Fractal, seed: u32
             }
             (sum, 0)
         },
-        |i| super::fbm3(points[i], f, seed)
+        |i| single::fbm3(points[i], f, seed)
     );
 }
 
@@ -103,17 +104,17 @@ pub(crate) fn fbm3_stochastic<L: Lanes8>(
             }
             (s, outside(cpu, &q))
         },
-        |i| super::fbm3_stochastic(points[i], f, seed, xi[i])
+        |i| single::fbm3_stochastic(points[i], f, seed, xi[i])
     );
 }
 
-/// [`fbm3`](super::fbm3) at every point: `out[i] = fbm3(points[i], f, seed)` for the first
+/// [`fbm3`](super::fbm::fbm3) at every point: `out[i] = fbm3(points[i], f, seed)` for the first
 /// `min(points.len(), out.len())` points, whose count it returns.
 pub fn fbm3_batch(points: &[[f32; 3]], f: Fractal, seed: u32, out: &mut [f32]) -> usize {
     fbm3_batch_on(Path::best(), points, f, seed, out)
 }
 
-/// [`fbm3_stochastic`](super::fbm3_stochastic) at every point with its own ξ:
+/// [`fbm3_stochastic`](super::fbm::fbm3_stochastic) at every point with its own ξ:
 /// `out[i] = fbm3_stochastic(points[i], f, seed, xi[i])` for the first `min` of the three
 /// lengths, whose count it returns. The lanes serve lacunarity 2 and gain ±½ (the paper's
 /// fBm); other parameters run one point at a time.
@@ -156,7 +157,7 @@ pub(crate) fn fbm3_stochastic_batch_on(
         on_lanes!(path, fbm3_stochastic(points: &[[f32; 3]], f: Fractal, seed: u32, xi: &[f32], out: &mut [f32]));
     } else {
         for ((o, &p), &x) in out.iter_mut().zip(points).zip(xi) {
-            *o = super::fbm3_stochastic(p, f, seed, x);
+            *o = single::fbm3_stochastic(p, f, seed, x);
         }
     }
     n
