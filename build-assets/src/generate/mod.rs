@@ -75,57 +75,34 @@ pub fn generate(spec: &TextureSpec, progress: Progress) -> Texture {
         Histogram::Slice => encode_ranks(&ranks, n as u32, scalar),
     };
     let data = match &spec.kind {
-        Kind::Blue2d {
-            initial_density, ..
-        } => {
+        // Blue2d ranks its plane over the whole texture, as `Histogram::Volume` does.
+        Kind::Blue2d(p) | Kind::Stbn(p) | Kind::Vac(p) => {
             let cfg = vac_config(
                 dims,
-                &[true, true],
-                spec.kind.groups(),
-                *initial_density,
+                &p.toroidal,
+                p.groups.clone(),
+                p.initial_density,
                 spec.seed,
             );
-            encode_ranks(&vac::rank(&cfg, progress).0, n as u32, scalar)
-        }
-        Kind::Stbn {
-            initial_density,
-            histogram,
-            ..
-        } => {
-            let cfg = vac_config(
-                dims,
-                &[true; 3],
-                spec.kind.groups(),
-                *initial_density,
-                spec.seed,
-            );
-            ranked(vac::rank(&cfg, progress).0, *histogram)
-        }
-        Kind::Vac {
-            groups,
-            toroidal,
-            initial_density,
-            histogram,
-        } => {
-            let cfg = vac_config(dims, toroidal, groups.clone(), *initial_density, spec.seed);
-            ranked(vac::rank(&cfg, progress).0, *histogram)
+            ranked(vac::rank(&cfg, progress).0, p.histogram)
         }
         Kind::White => encode_unit(&baselines::white(n, spec.seed), scalar),
-        Kind::Independent2d {
-            sigma,
-            initial_density,
-        } => {
+        Kind::Independent2d(p) => {
+            let sigma = p.groups[0].sigma;
             let ranks = baselines::independent2d(n / slice, spec.seed, |s| {
-                blue2d_ranks(dims[0], dims[1], *sigma, *initial_density, s)
+                blue2d_ranks(dims[0], dims[1], sigma, p.initial_density, s)
             });
             progress(n as u64, n as u64);
             encode_ranks(&ranks, slice as u32, scalar)
         }
-        Kind::Golden {
-            sigma,
-            initial_density,
-        } => {
-            let ranks = blue2d_ranks(dims[0], dims[1], *sigma, *initial_density, spec.seed);
+        Kind::Golden(p) => {
+            let ranks = blue2d_ranks(
+                dims[0],
+                dims[1],
+                p.groups[0].sigma,
+                p.initial_density,
+                spec.seed,
+            );
             progress(n as u64, n as u64);
             encode_unit(&baselines::golden(&ranks, dims[2]), scalar)
         }

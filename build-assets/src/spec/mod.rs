@@ -15,7 +15,7 @@ mod value;
 pub use crate::encoding::{Format, Scalar};
 pub use error::{SpecError, closest};
 pub use toml_file::{SpecFile, parse_toml, parse_value, read_cache_dir};
-pub use vac::{Group, splat_footprint};
+pub use vac::{Group, VacParams, splat_footprint};
 pub use value::{Span, Spanned, Table, Value};
 
 use fast::FastParams;
@@ -42,51 +42,19 @@ pub enum Histogram {
 /// What to generate, with every parameter explicit.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Kind {
-    /// 2D void and cluster (Ulichney 1993).
-    Blue2d {
-        /// Gaussian σ in texels (default 1.5, Ulichney's).
-        sigma: f64,
-        /// Initial pattern density.
-        initial_density: f64,
-    },
-    /// Spatiotemporal blue noise, 2D×1D (Wolfe et al. 2022, eq. 3).
-    Stbn {
-        /// Spatial σ (default 1.9).
-        sigma_xy: f64,
-        /// Temporal σ (default 1.9).
-        sigma_t: f64,
-        /// Initial pattern density (default 0.1).
-        initial_density: f64,
-        /// Ranking domain.
-        histogram: Histogram,
-    },
+    /// 2D void and cluster (Ulichney 1993): one group, x and y.
+    Blue2d(VacParams),
+    /// Spatiotemporal blue noise, 2D×1D (Wolfe et al. 2022, eq. 3): x and y, then t.
+    Stbn(VacParams),
     /// Void and cluster with any axis grouping (STBN App. B, eq. 15).
-    Vac {
-        /// Partition of the axes, each group with its σ.
-        groups: Vec<Group>,
-        /// Per axis: whether it wraps.
-        toroidal: Vec<bool>,
-        /// Initial pattern density (default 0.1).
-        initial_density: f64,
-        /// Ranking domain.
-        histogram: Histogram,
-    },
+    Vac(VacParams),
     /// Independent uniform white noise per texel.
     White,
-    /// An independent 2D blue-noise mask per slice (baseline: white over time).
-    Independent2d {
-        /// Spatial σ (default 1.9).
-        sigma: f64,
-        /// Initial pattern density.
-        initial_density: f64,
-    },
+    /// An independent 2D blue-noise mask per slice (baseline: white over time); the params'
+    /// one group is each slice's.
+    Independent2d(VacParams),
     /// One 2D blue-noise mask animated by adding `t · φ` (golden ratio) mod 1 (STBN §4.2).
-    Golden {
-        /// Spatial σ (default 1.9).
-        sigma: f64,
-        /// Initial pattern density.
-        initial_density: f64,
-    },
+    Golden(VacParams),
     /// A filter-adapted mask (FAST, Donnelly et al. 2024).
     Fast(FastParams),
     /// A sampler tile: per-pixel keys of Owen-scrambled Sobol samples whose errors are blue
@@ -99,12 +67,12 @@ impl Kind {
     /// The `kind` key's value.
     pub fn name(&self) -> &'static str {
         match self {
-            Kind::Blue2d { .. } => "blue2d",
-            Kind::Stbn { .. } => "stbn",
-            Kind::Vac { .. } => "vac",
+            Kind::Blue2d(_) => "blue2d",
+            Kind::Stbn(_) => "stbn",
+            Kind::Vac(_) => "vac",
             Kind::White => "white",
-            Kind::Independent2d { .. } => "independent2d",
-            Kind::Golden { .. } => "golden",
+            Kind::Independent2d(_) => "independent2d",
+            Kind::Golden(_) => "golden",
             Kind::Fast(_) => "fast",
             Kind::Sampler(_) => "sampler",
         }
@@ -116,29 +84,18 @@ impl Kind {
     /// kinds (each 2D mask of the baselines), `{x, y} × {t}` for STBN, the spec's groups for `vac`,
     /// none for white noise. The generator and the spec's work check both read it.
     pub fn groups(&self) -> Vec<Group> {
-        let xy = |sigma: f64| Group {
-            axes: vec![0, 1],
-            sigma,
-        };
+        self.vac().map_or_else(Vec::new, |p| p.groups.clone())
+    }
+
+    /// The void-and-cluster parameters of this kind, `None` outside that family.
+    pub fn vac(&self) -> Option<&VacParams> {
         match self {
-            Kind::Blue2d { sigma, .. }
-            | Kind::Independent2d { sigma, .. }
-            | Kind::Golden { sigma, .. } => {
-                vec![xy(*sigma)]
-            }
-            Kind::Stbn {
-                sigma_xy, sigma_t, ..
-            } => {
-                vec![
-                    xy(*sigma_xy),
-                    Group {
-                        axes: vec![2],
-                        sigma: *sigma_t,
-                    },
-                ]
-            }
-            Kind::Vac { groups, .. } => groups.clone(),
-            Kind::White | Kind::Fast(_) | Kind::Sampler(_) => Vec::new(),
+            Kind::Blue2d(p)
+            | Kind::Stbn(p)
+            | Kind::Vac(p)
+            | Kind::Independent2d(p)
+            | Kind::Golden(p) => Some(p),
+            Kind::White | Kind::Fast(_) | Kind::Sampler(_) => None,
         }
     }
 }
@@ -308,7 +265,7 @@ impl<'a> Fields<'a> {
     }
 
     fn density(&mut self) -> Result<f64, SpecError> {
-        let (x, span) = self.f64("initial_density", 0.1)?;
+        let (x, span) = self.f64("initial_density", vac::DEFAULT_DENSITY)?;
         if !(x > 0.0 && x <= 0.5) {
             return Err(SpecError::at(
                 "initial_density",

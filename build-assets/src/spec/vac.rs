@@ -16,6 +16,71 @@ pub struct Group {
     pub sigma: f64,
 }
 
+/// The default σ of `blue2d` (Ulichney's).
+pub const BLUE2D_SIGMA: f64 = 1.5;
+/// The default σ of every other void-and-cluster Gaussian (STBN's).
+pub const DEFAULT_SIGMA: f64 = 1.9;
+/// The default `initial_density`.
+pub const DEFAULT_DENSITY: f64 = 0.1;
+
+/// The parameters of the void-and-cluster family, as [`FastParams`](super::FastParams) are
+/// FAST's: one algorithm (STBN App. B) whose kinds are presets of its axis groups.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VacParams {
+    /// The axes that share one Gaussian, each group with its σ: x and y for `blue2d` (σ
+    /// [`BLUE2D_SIGMA`] by default), `independent2d` and `golden` (each slice's 2D mask, σ
+    /// [`DEFAULT_SIGMA`]); x and y, then t for `stbn` (`sigma_xy`, `sigma_t`); as given for
+    /// `vac` (by default every axis in one group, σ [`DEFAULT_SIGMA`]).
+    pub groups: Vec<Group>,
+    /// Per axis of the groups: whether it wraps (`vac`'s `toroidal`; every axis for the
+    /// others).
+    pub toroidal: Vec<bool>,
+    /// Density of the initial pattern ([`DEFAULT_DENSITY`]).
+    pub initial_density: f64,
+    /// How ranks become values (`stbn`, `vac`; the 2D kinds rank their one plane,
+    /// [`Histogram::Volume`](super::Histogram::Volume)).
+    pub histogram: super::Histogram,
+}
+
+impl VacParams {
+    /// A 2D mask's parameters (`blue2d`, `independent2d`, `golden`): x and y with σ `sigma`.
+    pub fn plane(sigma: f64, initial_density: f64) -> VacParams {
+        VacParams {
+            groups: vec![Group {
+                axes: vec![0, 1],
+                sigma,
+            }],
+            toroidal: vec![true; 2],
+            initial_density,
+            histogram: super::Histogram::Volume,
+        }
+    }
+
+    /// STBN's parameters: x and y with σ `sigma_xy`, t with σ `sigma_t`.
+    pub fn stbn(
+        sigma_xy: f64,
+        sigma_t: f64,
+        initial_density: f64,
+        histogram: super::Histogram,
+    ) -> VacParams {
+        VacParams {
+            groups: vec![
+                Group {
+                    axes: vec![0, 1],
+                    sigma: sigma_xy,
+                },
+                Group {
+                    axes: vec![2],
+                    sigma: sigma_t,
+                },
+            ],
+            toroidal: vec![true; 3],
+            initial_density,
+            histogram,
+        }
+    }
+}
+
 /// The kinds this file parses.
 pub const KINDS: &[&str] = &["blue2d", "stbn", "vac", "white", "independent2d", "golden"];
 
@@ -30,26 +95,26 @@ pub(super) fn parse(
     Ok(match kind {
         "blue2d" => {
             want_dims(2, 2)?;
-            Kind::Blue2d {
-                sigma: f.sigma("sigma", 1.5)?,
-                initial_density: f.density()?,
-            }
+            Kind::Blue2d(VacParams::plane(
+                f.sigma("sigma", BLUE2D_SIGMA)?,
+                f.density()?,
+            ))
         }
         "stbn" => {
             want_dims(3, 3)?;
-            Kind::Stbn {
-                sigma_xy: f.sigma("sigma_xy", 1.9)?,
-                sigma_t: f.sigma("sigma_t", 1.9)?,
-                initial_density: f.density()?,
-                histogram: f.histogram()?,
-            }
+            Kind::Stbn(VacParams::stbn(
+                f.sigma("sigma_xy", DEFAULT_SIGMA)?,
+                f.sigma("sigma_t", DEFAULT_SIGMA)?,
+                f.density()?,
+                f.histogram()?,
+            ))
         }
         "vac" => {
             want_dims(1, 4)?;
             let groups = match f.get("groups") {
                 None => vec![Group {
                     axes: (0..dims.len()).collect(),
-                    sigma: 1.9,
+                    sigma: DEFAULT_SIGMA,
                 }],
                 Some(v) => parse_groups(v, dims.len())?,
             };
@@ -93,12 +158,12 @@ pub(super) fn parse(
                     ));
                 }
             };
-            Kind::Vac {
+            Kind::Vac(VacParams {
                 groups,
                 toroidal,
                 initial_density: f.density()?,
                 histogram: f.histogram()?,
-            }
+            })
         }
         "white" => {
             want_dims(1, 4)?;
@@ -106,17 +171,17 @@ pub(super) fn parse(
         }
         "independent2d" => {
             want_dims(2, 4)?;
-            Kind::Independent2d {
-                sigma: f.sigma("sigma", 1.9)?,
-                initial_density: f.density()?,
-            }
+            Kind::Independent2d(VacParams::plane(
+                f.sigma("sigma", DEFAULT_SIGMA)?,
+                f.density()?,
+            ))
         }
         "golden" => {
             want_dims(3, 3)?;
-            Kind::Golden {
-                sigma: f.sigma("sigma", 1.9)?,
-                initial_density: f.density()?,
-            }
+            Kind::Golden(VacParams::plane(
+                f.sigma("sigma", DEFAULT_SIGMA)?,
+                f.density()?,
+            ))
         }
         other => {
             return Err(SpecError::msg(format!(
@@ -183,7 +248,7 @@ pub(super) fn parse_groups(v: &Spanned<Value>, ndims: usize) -> Result<Vec<Group
             seen[i as usize] = true;
             axes.push(i as usize);
         }
-        let sigma = f.sigma("sigma", 1.9).map_err(|mut e| {
+        let sigma = f.sigma("sigma", DEFAULT_SIGMA).map_err(|mut e| {
             e.key = Some(format!("groups[{gi}].sigma"));
             e.message = format!("groups[{gi}]: {}", e.message);
             e
@@ -230,40 +295,24 @@ pub(super) fn canonical(kind: &Kind) -> Option<String> {
         super::Histogram::Volume => "volume",
     };
     Some(match kind {
-        Kind::Blue2d {
-            sigma,
-            initial_density,
-        }
-        | Kind::Independent2d {
-            sigma,
-            initial_density,
-        }
-        | Kind::Golden {
-            sigma,
-            initial_density,
-        } => format!(
+        Kind::Blue2d(p) | Kind::Independent2d(p) | Kind::Golden(p) => format!(
             "sigma={};initial_density={}",
-            num(*sigma),
-            num(*initial_density)
+            num(p.groups[0].sigma),
+            num(p.initial_density)
         ),
-        Kind::Stbn {
-            sigma_xy,
-            sigma_t,
-            initial_density,
-            histogram,
-        } => format!(
+        Kind::Stbn(p) => format!(
             "sigma_xy={};sigma_t={};initial_density={};histogram={}",
-            num(*sigma_xy),
-            num(*sigma_t),
-            num(*initial_density),
-            h(histogram)
+            num(p.groups[0].sigma),
+            num(p.groups[1].sigma),
+            num(p.initial_density),
+            h(&p.histogram)
         ),
-        Kind::Vac {
+        Kind::Vac(VacParams {
             groups,
             toroidal,
             initial_density,
             histogram,
-        } => {
+        }) => {
             let g: Vec<String> = groups
                 .iter()
                 .map(|g| {

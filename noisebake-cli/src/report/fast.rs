@@ -7,7 +7,8 @@ use crate::export::plot::{Labels, PALETTE, Series, line_plot};
 use build_assets::generate::fast::{
     self, Combine, FastParams, Filter, Outcome, SampleSpace, TemporalFilter,
 };
-use build_assets::spec::{Format, Histogram, Kind, TextureSpec};
+use build_assets::spec::vac::{DEFAULT_DENSITY, DEFAULT_SIGMA};
+use build_assets::spec::{Format, Histogram, Kind, TextureSpec, VacParams};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
@@ -326,10 +327,7 @@ pub fn run(
     errs.push(errors(
         "independent2d",
         &baseline(
-            Kind::Independent2d {
-                sigma: 1.9,
-                initial_density: 0.1,
-            },
+            Kind::Independent2d(VacParams::plane(DEFAULT_SIGMA, DEFAULT_DENSITY)),
             &dims,
         ),
         d3,
@@ -337,10 +335,7 @@ pub fn run(
     errs.push(errors(
         "golden",
         &baseline(
-            Kind::Golden {
-                sigma: 1.9,
-                initial_density: 0.1,
-            },
+            Kind::Golden(VacParams::plane(DEFAULT_SIGMA, DEFAULT_DENSITY)),
             &dims,
         ),
         d3,
@@ -348,12 +343,12 @@ pub fn run(
     errs.push(errors(
         "stbn (slice histogram)",
         &baseline(
-            Kind::Stbn {
-                sigma_xy: 1.9,
-                sigma_t: 1.9,
-                initial_density: 0.1,
-                histogram: Histogram::Slice,
-            },
+            Kind::Stbn(VacParams::stbn(
+                DEFAULT_SIGMA,
+                DEFAULT_SIGMA,
+                DEFAULT_DENSITY,
+                Histogram::Slice,
+            )),
             &dims,
         ),
         d3,

@@ -10,7 +10,7 @@
 //! our smooth Voronoi (neither has smooth Voronoi; it is the goal's nearest stand-in).
 
 use build_assets::generate::rng::SplitMix64;
-use build_assets::spec::{Format, Histogram, Kind, TextureSpec};
+use build_assets::spec::{Format, Histogram, Kind, TextureSpec, VacParams};
 use noise_runtime::stochastic::*;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -464,12 +464,7 @@ pub fn run_with(timed: usize) -> Vec<Row> {
     let stbn = build_assets::generate(
         &TextureSpec {
             name: "XI".into(),
-            kind: Kind::Stbn {
-                sigma_xy: 1.9,
-                sigma_t: 1.9,
-                initial_density: 0.1,
-                histogram: Histogram::Slice,
-            },
+            kind: Kind::Stbn(VacParams::stbn(1.9, 1.9, 0.1, Histogram::Slice)),
             dims: vec![SIDE, SIDE, 64],
             seed: 3,
             format: Format::F32,
