@@ -1,9 +1,10 @@
 //! `bake()`: the build-script way in. Reads a spec file, fetches or generates every texture
 //! through the cache, and writes one Rust file into `OUT_DIR` for `noisebake::include_textures!()`.
 
-use crate::cache::{Locator, Source};
+use crate::cache::{Cache, Entry, Locator, Source};
 use crate::codegen;
 use crate::error::{Error, Warning};
+use crate::spec::TextureSpec;
 use crate::spec::parse_toml;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -70,7 +71,28 @@ pub fn write_cargo_error(error: &Error, out: &mut impl std::io::Write) -> std::i
     out.flush()
 }
 
-/// The line that announces a slow generation.
+/// Look up, announce, generate — what every way in (build script, macro, CLI, reports) does
+/// for one texture: `spec` from `cache` when it is there; else the
+/// [`announcement`](crate::generate::estimate::announcement) of its estimate goes to `announce`
+/// when it exceeds `threshold` seconds, and it is generated (reporting to `progress`) and
+/// stored.
+pub fn obtain(
+    cache: &mut Cache,
+    spec: &TextureSpec,
+    threshold: f64,
+    announce: &mut dyn FnMut(&str),
+    progress: crate::generate::Progress,
+) -> Result<Entry, Error> {
+    if let Some(e) = cache.lookup(spec) {
+        return Ok(e);
+    }
+    if let Some(line) = crate::generate::estimate::announcement(spec, threshold) {
+        announce(&line);
+    }
+    cache.get_or_insert_with(spec, || crate::generate(spec, progress))
+}
+
+/// The line that reports a slow generation once it is done.
 pub fn announce(name: &str, what: &str, seconds: f64, dir: &Path) -> String {
     format!(
         "noisebake: generated `{name}` ({what}) in {seconds:.1} s; later builds read it from {}",
@@ -212,26 +234,19 @@ impl Bake {
                 }
             } else {
                 let start = Instant::now();
-                let e = match cache.lookup(spec) {
-                    Some(e) => e,
-                    None => {
-                        let est = crate::generate::estimate::estimate(spec);
-                        if est.seconds > crate::generate::estimate::ANNOUNCE_SECONDS {
-                            // Shown when the script ends (Cargo holds build-script output),
-                            // and on stderr at once for `cargo build -vv`.
-                            let line = format!(
-                                "noisebake: generating `{}` ({} {:?}), estimated {est}",
-                                spec.name,
-                                spec.kind.name(),
-                                spec.dims
-                            );
-                            eprintln!("{line}");
-                            cargo(format!("warning={line}"));
-                            announced = true;
-                        }
-                        cache.get_or_insert_with(spec, || crate::generate(spec, &mut |_, _| {}))?
-                    }
-                };
+                let e = obtain(
+                    &mut cache,
+                    spec,
+                    crate::generate::estimate::ANNOUNCE_SECONDS,
+                    &mut |line| {
+                        // Shown when the script ends (Cargo holds build-script output), and
+                        // on stderr at once for `cargo build -vv`.
+                        eprintln!("noisebake: {line}");
+                        cargo(format!("warning=noisebake: {line}"));
+                        announced = true;
+                    },
+                    &mut |_, _| {},
+                )?;
                 if e.source == Source::Generated && start.elapsed().as_secs_f64() > SLOW_SECONDS {
                     let what = format!("{} {:?}", spec.kind.name(), spec.dims);
                     let dir = e

@@ -304,7 +304,15 @@ fn expand(input: Input) -> TokenStream {
     let entry = if analyzer {
         cache.lookup(&s)
     } else {
-        match cache.get_or_insert_with(&s, || build_assets::generate(&s, &mut |_, _| {})) {
+        // Said at once on stderr, which cargo shows for a proc macro that runs long.
+        let mut announce = |line: &str| eprintln!("noisebake: {line}");
+        match build_assets::bake::obtain(
+            &mut cache,
+            &s,
+            build_assets::generate::estimate::ANNOUNCE_SECONDS,
+            &mut announce,
+            &mut |_, _| {},
+        ) {
             Ok(e) => Some(e),
             Err(e) => return fail(e.to_string()),
         }

@@ -252,31 +252,23 @@ fn main() -> ExitCode {
     }
 }
 
-/// Generates with a progress bar on stderr that appears once a generation has run for 2 s.
+/// Generates with a progress bar on stderr that appears once a generation has run for 2 s,
+/// announced first when it is expected to take longer than that.
 fn generate_with_progress(spec: &TextureSpec) -> Texture {
+    if let Some(line) = build_assets::generate::estimate::announcement(spec, ANNOUNCE_SECONDS) {
+        eprintln!("{line}");
+    }
     with_progress(spec, |cb| generate(spec, cb))
 }
 
-/// Runs `run` with a progress callback that shows a bar on stderr once it has run for 2 s;
-/// a generation estimated to take longer than that is announced first, with its estimate.
+/// A generation expected to take longer than this is announced with its estimate.
+const ANNOUNCE_SECONDS: f64 = 2.0;
+
+/// Runs `run` with a progress callback that shows a bar on stderr once it has run for 2 s.
 fn with_progress<T>(spec: &TextureSpec, run: impl FnOnce(&mut dyn FnMut(u64, u64)) -> T) -> T {
-    let est = build_assets::generate::estimate::estimate(spec);
-    let mut said = false;
-    let mut say = |done: u64| {
-        if !said && done < u64::MAX && est.seconds > 2.0 {
-            eprintln!(
-                "generating `{}` ({} {:?}): estimated {est}",
-                spec.name,
-                spec.kind.name(),
-                spec.dims
-            );
-            said = true;
-        }
-    };
     let start = Instant::now();
     let mut bar: Option<ProgressBar> = None;
     let mut cb = |done: u64, total: u64| {
-        say(done);
         if bar.is_none() && start.elapsed() > Duration::from_secs(2) {
             let b = ProgressBar::new(total);
             b.set_style(
@@ -363,8 +355,16 @@ fn bake(
     let mut cache = locator.resolve().map_err(|e| e.to_string())?;
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     for s in &file.textures {
-        let entry = with_progress(s, |cb| cache.get_or_insert_with(s, || generate(s, cb)))
-            .map_err(|e| e.to_string())?;
+        let entry = with_progress(s, |cb| {
+            build_assets::bake::obtain(
+                &mut cache,
+                s,
+                ANNOUNCE_SECONDS,
+                &mut |line| eprintln!("{line}"),
+                cb,
+            )
+        })
+        .map_err(|e| e.to_string())?;
         for w in cache.warnings.drain(..) {
             eprintln!("warning: {w}");
         }

@@ -51,6 +51,21 @@ const SAMPLER_SWEEPS: f64 = 20.0;
 /// Generations expected to take longer than this get an up-front message.
 pub const ANNOUNCE_SECONDS: f64 = 10.0;
 
+/// The line every way in prints before a generation expected to take longer than
+/// `threshold` seconds (a build script uses [`ANNOUNCE_SECONDS`], interactive tools less):
+/// `generating `NAME` (KIND DIMS): estimated …`; `None` below it.
+pub fn announcement(spec: &TextureSpec, threshold: f64) -> Option<String> {
+    let est = estimate(spec);
+    (est.seconds > threshold).then(|| {
+        format!(
+            "generating `{}` ({} {:?}): estimated {est}",
+            spec.name,
+            spec.kind.name(),
+            spec.dims
+        )
+    })
+}
+
 /// The estimate of `spec` on the threads the generator will get (rayon's current pool).
 pub fn estimate(spec: &TextureSpec) -> Estimate {
     estimate_with_threads(spec, rayon::current_num_threads())

@@ -95,20 +95,15 @@ pub(crate) fn bake(
     }
     .resolve()
     .map_err(|e| e.to_string())?;
-    if cache.lookup(s).is_none() {
-        let est = build_assets::generate::estimate::estimate(s);
-        if est.seconds > 2.0 {
-            log(&format!(
-                "  baking {} {:?}: estimated {est}",
-                s.kind.name(),
-                s.dims
-            ));
-        }
-    }
     let start = Instant::now();
-    let e = cache
-        .get_or_insert_with(s, || build_assets::generate(s, &mut |_, _| {}))
-        .map_err(|e| e.to_string())?;
+    let e = build_assets::bake::obtain(
+        &mut cache,
+        s,
+        2.0,
+        &mut |line| log(&format!("  {line}")),
+        &mut |_, _| {},
+    )
+    .map_err(|e| e.to_string())?;
     let cached = e.source == build_assets::cache::Source::Hit;
     let secs = if cached {
         e.seconds

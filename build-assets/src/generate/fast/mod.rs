@@ -267,7 +267,7 @@ pub fn paper_baseline(
     let d = dims3(dims);
     with_metric!(
         params.sample_space,
-        paper::optimize(d, &fp, samples, seed, schedule, progress)
+        paper::run_schedule(d, &fp, samples, seed, schedule, progress)
     )
 }
 

@@ -38,7 +38,7 @@ pub struct Schedule {
 /// Runs the paper's schedule from `samples` (each slice already stratified).
 /// `progress(iteration, iterations)` is called after each iteration. The start's loss is always
 /// measured: the schedule's swaps can raise the loss, so its curve is of exact losses.
-pub fn optimize<const C: usize, D>(
+pub fn run_schedule<const C: usize, D>(
     dims: [usize; 3],
     fp: &Footprint,
     samples: Vec<f64>,
