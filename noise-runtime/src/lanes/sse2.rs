@@ -11,8 +11,8 @@
 //! backend ([`scalar`](super::scalar)); the tests in [`lanes`](super) compare the two.
 //!
 //! Why by hand: LLVM vectorises little of the scalar forms. In the 3D Perlin estimator it kept
-//! the three fades and one lane of the split scalar (169 instructions a call, against 118 on
-//! lanes), and the estimator is bound by how many of its calls fit in the out-of-order window,
+//! the three fades and one lane of the split scalar (about half again the instructions of the
+//! lane form), and the estimator is bound by how many of its calls fit in the out-of-order window,
 //! so its instruction count is its speed.
 
 use core::arch::x86_64::{

@@ -65,9 +65,9 @@ const LOCAL: u64 = 2;
 /// Why screen: the exact early rejection bounds every unvisited term of eq. (8) by
 /// `2 F d(s_i, s_j)` (triangle inequality), but the terms have mixed signs, so their sum is
 /// typically of the order `d(s_i, s_j) √(Σ F²)`, far below that bound. On the paper's product
-/// footprint (box 5×5 × EMA over 16 frames, 1296 entries) exact rejection visits ~1200 entries
-/// per proposal on average; the screen at κ = 1 visits ~170, and the loss falls ~5× faster per
-/// second. A screen only ever *skips* a swap that very likely does not gain: accepted swaps are
+/// footprint (box 5×5 × EMA over 16 frames) exact rejection visits nearly every entry per
+/// proposal; the screen at κ = 1 visits a small fraction of them, and the loss falls several
+/// times faster per second. A screen only ever *skips* a swap that very likely does not gain: accepted swaps are
 /// still evaluated in full, so the loss falls monotonically and its bookkeeping stays exact.
 /// κ = 1 was the fastest of 0.3–3 on that case. A second, wider screen (κ = 4) used to follow
 /// once κ = 1 converged; under the stopping rule of [`CONVERGED`] a bake now ends before that
@@ -483,7 +483,7 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
     /// The sum over a column runs in [`LANES`] interleaved partial sums, added in a fixed order
     /// at the column's end: the same bits whether or not the compiler vectorises it. The `f32`
     /// screen ([`survives`](Self::survives)) repeats this walk in its own precision rather than
-    /// through a shared generic helper: that helper measured 12–15 % slower here.
+    /// through a shared generic helper: that helper measured slower here.
     #[inline]
     pub(super) fn gain(
         &self,

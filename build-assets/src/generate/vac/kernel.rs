@@ -8,7 +8,7 @@
 //! and the brute-force reference in the tests.
 //!
 //! Energies are [`Energy`] (`i32`): half the bytes of `i64`, which is what the large masks are
-//! bound by (memory traffic; STBN 128×128×64 runs 20 % faster). The scale is chosen per mask so
+//! bound by (memory traffic; the large STBN bench case measured faster). The scale is chosen per mask so
 //! that a texel's largest possible energy stays below `2^28`: `shift = 23` for STBN at σ 1.9.
 //!
 //! The fast engine truncates each group's Gaussian where it falls below a cutoff (offsets whose

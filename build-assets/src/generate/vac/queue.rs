@@ -6,8 +6,8 @@
 //! recomputes the top block until its key is exact ([`BlockQueue::top`], [`BlockQueue::set`])
 //! and offers improved keys at once ([`BlockQueue::lower`]). A block's 32 energies fill four
 //! cache lines that the prefetcher streams, and the tree has one leaf per 32 texels, so a
-//! refresh is cheap and no step rescans the volume. (Measured: 16 and 64 texels per block are
-//! 5–15 % slower on the benchmark sizes; 8 is 40 % slower.)
+//! refresh is cheap and no step rescans the volume. (Measured on `report bench`'s sizes: 16 and 64
+//! texels per block were slower, 8 much slower.)
 
 use super::tree::{ABSENT, MinTree};
 
