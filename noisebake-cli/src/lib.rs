@@ -10,3 +10,4 @@ pub mod cache;
 pub mod export;
 pub mod points;
 pub mod report;
+pub mod zsobol;

@@ -280,6 +280,13 @@ impl Occlusion {
         1.0
     }
 
+    /// The visibility seen from pixel `(x, y)` along `local`, a direction about +z (turned into
+    /// the frame of the pixel's normal): one ray of the estimate.
+    pub fn ray(&self, x: usize, y: usize, local: [f32; 3]) -> f32 {
+        let (p, n) = self.hit(x, y);
+        Self::visible(p, Self::to_world(n, local))
+    }
+
     /// A local direction about +z turned into the frame of normal `n`.
     fn to_world(n: [f32; 3], l: [f32; 3]) -> [f32; 3] {
         let a = if n[0].abs() > 0.9 {

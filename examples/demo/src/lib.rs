@@ -16,6 +16,7 @@ pub mod equal_time;
 pub mod material;
 pub mod noises;
 mod output;
+pub mod spp_panel;
 pub mod taa_panel;
 
 pub use output::png as save_png;
@@ -320,6 +321,8 @@ pub fn main() {
     match run(&cfg) {
         Ok(results) => {
             output::summary(&results, &cfg);
+            let spp = spp_panel::run(&cfg);
+            spp_panel::print(&spp, &cfg);
             let taa = taa_panel::run(&cfg);
             taa_panel::print(&taa, &cfg);
             let dir = cfg.out.clone().unwrap_or_default();

@@ -1,5 +1,6 @@
 //! `noisebake report sampler`: several samples per pixel. Baked sampler tiles (kind `sampler`)
-//! against Heitz et al. 2019's published tables (feature `peers`), the free samplers
+//! against Heitz et al. 2019's published tables (feature `peers`), Ahmed & Wonka 2020's
+//! hierarchical pixel ordering (ZSobol, [`crate::zsobol`]), the free samplers
 //! (`sampler::rd_ign_r2`, `sampler::sobol_owen`) and white noise, at 1, 2, 4, 8 and 16 spp.
 //!
 //! The measure: each pixel of a 256×256 image (twice the 128×128 tile in each direction, so the
@@ -284,6 +285,17 @@ pub fn run(out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
         push(&mut rows, "rd_ign_r2 (free)", "free", spp, 0, None, &rd);
         let so = |x: i32, y: i32, i: u32, d: u32| sampler::sobol_owen::<4>(x, y, i, 1)[d as usize];
         push(&mut rows, "sobol_owen (free)", "free", spp, 0, None, &so);
+        let z = crate::zsobol::ZSobol::new(IMAGE, spp, 7);
+        let zs = |x: i32, y: i32, i: u32, d: u32| z.sample(x, y, i, d);
+        push(
+            &mut rows,
+            "ZSobol (Ahmed-Wonka 2020)",
+            "free",
+            spp,
+            0,
+            None,
+            &zs,
+        );
         let white = |x: i32, y: i32, i: u32, d: u32| {
             let h = noise_runtime::hash::hash3(x, y, (i * 4 + d) as i32, 99);
             noise_runtime::sequence::to_unit(h)

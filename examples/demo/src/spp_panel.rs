@@ -1,0 +1,160 @@
+//! Several rays per pixel: the occlusion scene with 4 cosine-weighted rays per pixel and frame,
+//! each ray's two numbers from a sampler — the baked sampler tile (`AO_RAYS`, made for the
+//! demo's blur), Ahmed & Wonka 2020's hierarchical ordering (ZSobol, Blender Cycles' default,
+//! no table), the free `rd_ign_r2` and `sobol_owen`, and white noise. Measured after the blur on
+//! the first frame (what a real-time renderer's denoiser sees) and after the EMA.
+
+use crate::apps::{App, Occlusion};
+use crate::noises::AO_RAYS;
+use crate::{Config, EMA_ALPHA, blur, rmse_se};
+use noisebake::{sampler, warp};
+use noisebake_cli::zsobol::ZSobol;
+use rayon::prelude::*;
+
+/// Rays per pixel per frame.
+pub const SPP: u32 = 4;
+
+/// A source of each ray's two numbers: `(x, y, frame, ray) → (u, v)`.
+type Source<'a> = &'a (dyn Fn(i32, i32, u32, u32) -> [f32; 2] + Sync);
+
+/// One sampler's errors after the blur, with their standard errors.
+#[derive(Clone, Debug)]
+pub struct Row {
+    /// The sampler.
+    pub name: &'static str,
+    /// Whether it needs no table.
+    pub free: bool,
+    /// Bytes it ships.
+    pub bytes: usize,
+    /// Frame 0 after the blur.
+    pub first: (f64, f64),
+    /// The EMA after every frame, then the blur.
+    pub ema: (f64, f64),
+}
+
+/// Renders the occlusion scene at [`SPP`] rays per pixel with every sampler.
+pub fn run(cfg: &Config) -> Vec<Row> {
+    let app = Occlusion { size: cfg.size };
+    let [w, h] = cfg.size;
+    let reference = blur(&app.reference(), cfg.size, 1);
+    let footprint = 4.0 * std::f64::consts::PI;
+    let sources: [(&str, bool, usize, Source<'_>); 5] = [
+        (
+            "sampler tile",
+            false,
+            AO_RAYS.keys().bytes().len(),
+            &|x, y, f, i| AO_RAYS.sample2(x, y, f, i, 0),
+        ),
+        ("zsobol", true, 0, &|x, y, f, i| {
+            // Ordered for SPP samples a frame, scrambled afresh each frame (seeded by it), as
+            // a real-time renderer would run it.
+            let z = ZSobol::new(w.max(h), SPP, 7 + u64::from(f));
+            [z.sample(x, y, i, 0), z.sample(x, y, i, 1)]
+        }),
+        ("rd_ign_r2", true, 0, &|x, y, f, i| {
+            sampler::rd_ign_r2::<2>(x, y, f * SPP + i)
+        }),
+        ("sobol_owen", true, 0, &|x, y, f, i| {
+            sampler::sobol_owen::<2>(x, y, f * SPP + i, 1)
+        }),
+        ("white", true, 0, &|x, y, f, i| {
+            let n = ((f * SPP + i) * 2) as i32;
+            let u = |k: i32| (noisebake::hash::hash3(x, y, n + k, 99) >> 8) as f32 / 16_777_216.0;
+            [u(0), u(1)]
+        }),
+    ];
+    sources
+        .iter()
+        .map(|&(name, free, bytes, source)| {
+            let mut frame = vec![0.0f32; w * h];
+            let mut ema = Vec::new();
+            let mut first = (0.0, 0.0);
+            for f in 0..cfg.frames as u32 {
+                frame.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+                    for (x, out) in row.iter_mut().enumerate() {
+                        let mut sum = 0.0;
+                        for i in 0..SPP {
+                            let [u, v] = source(x as i32, y as i32, f, i);
+                            sum += app.ray(x, y, warp::cosine_hemisphere(u, v));
+                        }
+                        *out = sum / SPP as f32;
+                    }
+                });
+                if f == 0 {
+                    first = rmse_se(&blur(&frame, cfg.size, 1), &reference, footprint);
+                    ema = frame.clone();
+                } else {
+                    for (e, v) in ema.iter_mut().zip(&frame) {
+                        *e += EMA_ALPHA as f32 * (v - *e);
+                    }
+                }
+            }
+            Row {
+                name,
+                free,
+                bytes,
+                first,
+                ema: rmse_se(&blur(&ema, cfg.size, 1), &reference, footprint),
+            }
+        })
+        .collect()
+}
+
+/// The least error on the first frame, what ties with it, and what the best free sampler leaves.
+pub fn verdict(rows: &[Row]) -> String {
+    let Some(best) = rows.iter().min_by(|a, b| a.first.0.total_cmp(&b.first.0)) else {
+        return String::new();
+    };
+    let tied = |r: &Row| (r.first.0 - best.first.0).abs() <= 2.0 * r.first.1.hypot(best.first.1);
+    let mut s = format!(
+        "least error on one frame: {} ({:.4} ± {:.4})",
+        best.name, best.first.0, best.first.1
+    );
+    let ties: Vec<&str> = rows
+        .iter()
+        .filter(|r| r.name != best.name && tied(r))
+        .map(|r| r.name)
+        .collect();
+    if !ties.is_empty() {
+        s += &format!(", tied with {}", ties.join(", "));
+    }
+    if let Some(f) = rows
+        .iter()
+        .filter(|r| r.free && r.name != "white")
+        .min_by(|a, b| a.first.0.total_cmp(&b.first.0))
+    {
+        if f.name == best.name {
+            s += "; a free sampler wins here: no table needed";
+        } else if tied(f) {
+            s += &format!("; {} ties it and needs no table", f.name);
+        } else {
+            s += &format!(
+                "; the best free sampler, {}, leaves {:.0} % more",
+                f.name,
+                100.0 * (f.first.0 / best.first.0 - 1.0)
+            );
+        }
+    }
+    s
+}
+
+/// Prints the panel.
+pub fn print(rows: &[Row], cfg: &Config) {
+    println!(
+        "\nocclusion with {SPP} rays per pixel per frame (each ray's two numbers from a sampler), after the blur:"
+    );
+    println!(
+        "  {:<14} {:>8} {:>18} {:>22}",
+        "sampler",
+        "bytes",
+        "1 frame",
+        format!("EMA {} frames", cfg.frames)
+    );
+    for r in rows {
+        println!(
+            "  {:<14} {:>8} {:>9.4} ± {:.4} {:>13.4} ± {:.4}",
+            r.name, r.bytes, r.first.0, r.first.1, r.ema.0, r.ema.1
+        );
+    }
+    println!("  {}", verdict(rows));
+}
