@@ -40,6 +40,8 @@ const FAST_PROPOSAL: f64 = 5.0e-7;
 const FAST_VECTOR: f64 = 14.0;
 /// Rounds FAST typically runs before its gain is spent (`optimize::CONVERGED`).
 const FAST_ROUNDS: f64 = 18.0;
+/// The same for directions, which stop at `optimize::CONVERGED_DIRECTIONS`.
+const FAST_ROUNDS_DIRECTIONS: f64 = 10.0;
 
 /// Seconds per multiply-add of the sampler optimiser's scoring and updates.
 const SAMPLER_C: f64 = 1.0e-9;
@@ -82,9 +84,14 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
             } else {
                 FAST_C * FAST_VECTOR
             };
-            let rounds = p
-                .iterations
-                .map_or(FAST_ROUNDS, |r| (r as f64).min(FAST_ROUNDS));
+            let typical = if crate::generate::fast::converged(p.sample_space)
+                > crate::generate::fast::optimize::CONVERGED
+            {
+                FAST_ROUNDS_DIRECTIONS
+            } else {
+                FAST_ROUNDS
+            };
+            let rounds = p.iterations.map_or(typical, |r| (r as f64).min(typical));
             // Tiles of one colour run in parallel (`optimize`): at least 16 texels and the
             // footprint's radius wide, an even number per axis.
             let f = p.footprint(&spec.dims);

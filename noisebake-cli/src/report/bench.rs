@@ -8,13 +8,13 @@
 //! For each FAST case at its largest size it also runs the optimiser on past its stopping
 //! rule to the round cap ([`Curve`]): the loss's decrease against time, the round where the
 //! bake stopped, and the error there and at the cap, which is the trade the stopping rule
-//! ([`build_assets::generate::fast::optimize::CONVERGED`]) makes.
+//! ([`build_assets::generate::fast::converged`] of the case's sample space) makes.
 
 use crate::export::plot::{Labels, PALETTE, Series, line_plot};
 use crate::report::compare::{loss_params, measure};
 use crate::report::vector::{self, Space};
 use build_assets::generate::estimate::estimate_with_threads;
-use build_assets::generate::fast::{self, MAX_ROUNDS, optimize::CONVERGED};
+use build_assets::generate::fast::{self, MAX_ROUNDS};
 use build_assets::spec::{Kind, TextureSpec};
 use serde::Serialize;
 use std::path::Path;
@@ -53,7 +53,7 @@ pub struct Curve {
     /// `(seconds, decrease of the loss since the start)` after each round.
     pub points: Vec<(f64, f64)>,
     /// The round after which the bake stops (1-based): the first whose gain is at most
-    /// `CONVERGED` of the decrease so far.
+    /// the sample space's threshold (`fast::converged`) of the decrease so far.
     pub stop_round: usize,
     /// The error at the round cap (the bake's error is its row's `rmse`).
     pub rmse_at_cap: f64,
@@ -252,7 +252,7 @@ fn run_on(case: &str, s: &TextureSpec, log: &mut dyn FnMut(&str)) -> Result<Opti
     let out =
         pool.install(|| fast::generate_within(&capped, &s.dims, s.seed, None, 0.0, &mut |_, _| {}));
     let points: Vec<(f64, f64)> = out.curve.iter().map(|p| (p.seconds, p.decrease)).collect();
-    let stop_round = stop_round(&points);
+    let stop_round = stop_round(&points, fast::converged(params.sample_space));
     let scalar = s.format.scalar;
     let bytes = fast::encode(&capped, &s.dims, &out.samples, scalar);
     let values = build_assets::Texture {
@@ -279,12 +279,12 @@ fn run_on(case: &str, s: &TextureSpec, log: &mut dyn FnMut(&str)) -> Result<Opti
 }
 
 /// The round (1-based) after which the stopping rule ends a run with these `(seconds,
-/// decrease)` points: the first whose gain is at most [`CONVERGED`] of the decrease so far (the
-/// optimiser's test, in the same terms), or the last.
-pub fn stop_round(points: &[(f64, f64)]) -> usize {
+/// decrease)` points: the first whose gain is at most `converged` ([`fast::converged`] of the
+/// sample space) of the decrease so far (the optimiser's test, in the same terms), or the last.
+pub fn stop_round(points: &[(f64, f64)], converged: f64) -> usize {
     let mut prev = 0.0;
     for (r, &(_, d)) in points.iter().enumerate() {
-        if d - prev <= CONVERGED * d {
+        if d - prev <= converged * d {
             return r + 1;
         }
         prev = d;
@@ -374,7 +374,10 @@ mod tests {
             baked.curve.len() < on.curve.len(),
             "the rule stops before the cap here"
         );
-        assert_eq!(stop_round(&pts), baked.curve.len());
+        assert_eq!(
+            stop_round(&pts, fast::converged(p.sample_space)),
+            baked.curve.len()
+        );
         for (a, b) in baked.curve.iter().zip(&on.curve) {
             assert_eq!(a.decrease, b.decrease);
         }

@@ -85,7 +85,7 @@ pub struct PaperComparison {
     pub case: String,
     /// Our optimiser on 2 threads, run past its baking threshold (120 s, threshold 1e-7).
     pub ours: Run,
-    /// Our optimiser on 2 threads as it bakes (threshold [`fast::optimize::CONVERGED`]).
+    /// Our optimiser on 2 threads as it bakes (threshold [`fast::converged`]).
     pub ours_baking: Run,
     /// The paper's schedule, as published and with γ capped.
     pub paper: Vec<PaperRun>,
@@ -124,7 +124,14 @@ pub fn paper_comparison(dims: &[usize], log: &mut dyn FnMut(&str)) -> PaperCompa
     let params = cosine_params();
     // Ours as it bakes, then run on past its baking threshold (CONVERGED) so the curve shows
     // when it reaches each of the paper's losses.
-    let (ours_baking, _) = timed_within(&case, &params, dims, 2, None, fast::optimize::CONVERGED);
+    let (ours_baking, _) = timed_within(
+        &case,
+        &params,
+        dims,
+        2,
+        None,
+        fast::converged(params.sample_space),
+    );
     log(&format!("{} (ours, as baked)", ours_baking.describe()));
     let (ours, _) = timed_within(&case, &params, dims, 2, Some(120.0), 1e-7);
     log(&format!(
@@ -210,7 +217,14 @@ pub fn cosine_params() -> FastParams {
 }
 
 fn timed(case: &str, params: &FastParams, dims: &[usize], threads: usize) -> (Run, Outcome) {
-    timed_within(case, params, dims, threads, None, fast::optimize::CONVERGED)
+    timed_within(
+        case,
+        params,
+        dims,
+        threads,
+        None,
+        fast::converged(params.sample_space),
+    )
 }
 
 fn timed_within(
@@ -366,7 +380,7 @@ pub fn run(
                 &[128, 128, 32],
                 threads,
                 rounds.is_none().then_some(180.0),
-                fast::optimize::CONVERGED,
+                fast::converged(params.sample_space),
             );
             rounds = Some(run.rounds as u32);
             log(&run.describe());

@@ -200,10 +200,21 @@ pub fn generate(
         dims,
         seed,
         None,
-        optimize::CONVERGED,
+        converged(params.sample_space),
         false,
         progress,
     )
+}
+
+/// The stopping threshold a bake of `space` uses: [`optimize::CONVERGED_DIRECTIONS`] for
+/// directions, [`optimize::CONVERGED`] for everything else.
+pub fn converged(space: SampleSpace) -> f64 {
+    match space {
+        SampleSpace::Sphere | SampleSpace::Hemisphere | SampleSpace::CosineHemisphere => {
+            optimize::CONVERGED_DIRECTIONS
+        }
+        _ => optimize::CONVERGED,
+    }
 }
 
 /// [`generate`] for reports: the same samples (without a budget), the start's loss measured, an
@@ -453,7 +464,7 @@ mod tests {
             );
             assert!(exact < init, "{space:?}: {exact} !< {init}");
             // A report's run measures the start and gives the same samples.
-            let measured = generate_within(&p, &dims, 5, None, optimize::CONVERGED, &mut |_, _| {});
+            let measured = generate_within(&p, &dims, 5, None, converged(space), &mut |_, _| {});
             assert_eq!(measured.samples, out.samples);
             assert!((measured.initial_loss.unwrap() - init).abs() < 1e-9 * init.abs());
             assert!((measured.loss().unwrap() - exact).abs() < 1e-9 * exact.abs());
