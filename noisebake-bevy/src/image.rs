@@ -10,10 +10,10 @@ use bevy::image::{Image, ImageSampler};
 use bevy::render::render_resource::{
     Extent3d, TextureDimension, TextureFormat, TextureViewDescriptor, TextureViewDimension,
 };
-use noise_runtime::{GpuFormat, GpuTexture, Mask2, Mask3, Mask4, Texel};
+use noise_runtime::{GpuFormat, GpuTexture, Mask2, Mask3, Mask4, SamplerTile, Texel};
 
 /// A mask baked into the binary (`Mask2`, `Mask3`, `Mask4` statics from `build.rs` or
-/// `noise_texture!`), as the GPU sees it.
+/// `noise_texture!`, and `SamplerTile`s through their key mask), as the GPU sees it.
 pub trait BakedMask {
     /// The texture's size, layers and format.
     fn gpu_texture(&self) -> GpuTexture;
@@ -44,6 +44,19 @@ macro_rules! baked_mask {
 baked_mask!(Mask2, W, H);
 baked_mask!(Mask3, W, H, D);
 baked_mask!(Mask4, W, H, D, E);
+
+/// A sampler tile is its key mask on the GPU (`R16Uint`, one layer per sample dimension), as
+/// WGSL's `nb_sampler_tile(keys, pixel, frame, i, d, spp)` reads it.
+impl<const W: u32, const H: u32, const SPP: u32, const D: u32> BakedMask
+    for SamplerTile<W, H, SPP, D>
+{
+    fn gpu_texture(&self) -> GpuTexture {
+        self.keys().gpu_texture()
+    }
+    fn gpu_data(&self) -> Vec<u8> {
+        BakedMask::gpu_data(self.keys())
+    }
+}
 
 /// The Bevy (wgpu) texture format of a runtime [`GpuFormat`].
 pub fn texture_format(format: GpuFormat) -> TextureFormat {

@@ -13,7 +13,7 @@ use bevy::ecs::system::RunSystemOnce;
 use bevy::image::{CompressedImageFormats, ImageLoader, ImagePlugin};
 use bevy::prelude::*;
 use bevy::render::render_resource::{TextureFormat, TextureViewDimension};
-use noise_runtime::{Mask2, Mask3, Mask4};
+use noise_runtime::{Mask2, Mask3, Mask4, SamplerTile};
 use noisebake_bevy::{BakedMask, NoiseMasks, NoisebakePlugin, mask_image};
 use noisebake_test_support::bake::{gen_tex, spec};
 
@@ -102,6 +102,19 @@ fn bevys_ktx2_loader_reads_every_format_the_bake_writes() {
             &white(d3, "u8x4"),
             |b| Box::new(Mask3::<[u8; 4], 16, 16, 4>::new(b)),
             F::Rgba8Unorm,
+            4,
+        ),
+        // A sampler tile: its 16-bit keys, one layer per sample dimension.
+        case(
+            d,
+            "sampler",
+            "kind = \"sampler\"\ndims = [16, 16]\nseed = 9\nspp = 4\nsample_dims = 4",
+            |b| {
+                Box::new(SamplerTile::<16, 16, 4, 4>::new(
+                    Mask3::<u16, 16, 16, 4>::new(b),
+                ))
+            },
+            F::R16Uint,
             4,
         ),
         case(
