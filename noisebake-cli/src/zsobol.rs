@@ -120,7 +120,7 @@ impl ZSobol {
         let pair = u64::from(d / 2) * 2;
         let index = self.index(x as u32, y as u32, i, pair);
         let bits = mix(self.seed ^ mix(pair + 2));
-        let seed = if d % 2 == 0 {
+        let seed = if d.is_multiple_of(2) {
             bits as u32
         } else {
             (bits >> 32) as u32
