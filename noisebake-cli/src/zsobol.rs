@@ -7,8 +7,12 @@
 //! points are stratified, so each block's samples together are too: the error is blue across
 //! the screen at every scale, and each pixel's own `spp` points are a stratified run.
 //!
-//! The algorithm is the paper's and pbrt-v4's; the seed hash is ours (any good 64-bit mix:
-//! pbrt hashes with MurmurHash), so the values are not pbrt's bit for bit.
+//! The algorithm is the paper's and pbrt-v4's, over the runtime's Sobol matrices and Burley's
+//! Owen scramble (`noise_runtime::sampler::{sobol, owen}`, as pbrt's `FastOwenScrambler`); the
+//! seed hash is ours (any good 64-bit mix: pbrt hashes with MurmurHash), so the values are not
+//! pbrt's bit for bit.
+
+use noise_runtime::sampler::{owen, sobol};
 
 /// The 24 permutations of `0..4`, in lexicographic order.
 const PERMUTATIONS: [[u8; 4]; 24] = {
@@ -42,33 +46,6 @@ fn mix(mut v: u64) -> u64 {
     v = v.wrapping_mul(0x81da_def4_bc2d_d44d);
     v ^= v >> 33;
     v
-}
-
-/// Dimension `d` (0 or 1) of the `index`-th Sobol point as a 32-bit fraction: dimension 0 is
-/// the van der Corput sequence, dimension 1 the Sobol matrix of the polynomial `x + 1`.
-fn sobol(index: u32, d: usize) -> u32 {
-    let mut v = 1u32 << 31;
-    let mut out = 0;
-    for i in 0..32 {
-        let column = if d == 0 { 1u32 << (31 - i) } else { v };
-        if index >> i & 1 == 1 {
-            out ^= column;
-        }
-        v ^= v >> 1;
-    }
-    out
-}
-
-/// Burley's hash-based Owen scramble (the Laine–Karras form on reversed bits), as pbrt's
-/// `FastOwenScrambler`.
-fn owen(x: u32, seed: u32) -> u32 {
-    let mut v = x.reverse_bits();
-    v ^= v.wrapping_mul(0x3d20_adea);
-    v = v.wrapping_add(seed);
-    v = v.wrapping_mul((seed >> 16) | 1);
-    v ^= v.wrapping_mul(0x0552_6c56);
-    v ^= v.wrapping_mul(0x53a2_2864);
-    v.reverse_bits()
 }
 
 /// A ZSobol sampler for an image of `resolution` pixels on its longer side and `spp` (a power

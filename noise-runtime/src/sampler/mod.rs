@@ -212,9 +212,16 @@ const SOBOL: [[u32; 32]; MAX_DIMS] = {
     v
 };
 
-/// Dimension `d` of the `index`-th Sobol point, as a 32-bit fraction.
+/// Dimension `d` (below [`MAX_DIMS`]) of the `index`-th Sobol point, as a 32-bit fraction: a
+/// building block for other orderings of the sequence (the CLI's ZSobol comparison orders it by
+/// pixel blocks).
+///
+/// # Panics
+///
+/// If `d` is [`MAX_DIMS`] or more.
+#[must_use]
 #[inline(always)]
-fn sobol(index: u32, d: usize) -> u32 {
+pub fn sobol(index: u32, d: usize) -> u32 {
     let mut out = 0;
     let mut n = index;
     let mut i = 0;
@@ -231,8 +238,9 @@ fn sobol(index: u32, d: usize) -> u32 {
 /// Burley's hash-based nested uniform (Owen) scramble of a 32-bit fraction: the Laine–Karras
 /// permutation with Burley's constants, applied to the reversed bits, so each bit is flipped
 /// by a hash of the bits above it.
+#[must_use]
 #[inline(always)]
-fn owen(x: u32, seed: u32) -> u32 {
+pub fn owen(x: u32, seed: u32) -> u32 {
     let mut v = x.reverse_bits();
     v ^= v.wrapping_mul(0x3d20_adea);
     v = v.wrapping_add(seed);
