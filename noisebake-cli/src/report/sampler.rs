@@ -1,5 +1,6 @@
 //! `noisebake report sampler`: several samples per pixel. Baked sampler tiles (kind `sampler`)
-//! against Heitz et al. 2019's published tables (feature `peers`), Ahmed & Wonka 2020's
+//! against Heitz et al. 2019's published tables and OpenQMC's blue-noise samplers (feature
+//! `peers`: `blue-noise-sampler`, `openqmc-rs`), Ahmed & Wonka 2020's
 //! hierarchical pixel ordering (ZSobol, [`crate::zsobol`]), the free samplers
 //! (`sampler::rd_ign_r2`, `sampler::sobol_owen`) and white noise, at 1, 2, 4, 8 and 16 spp.
 //!
@@ -279,6 +280,37 @@ pub fn run(out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
                 320 * 1024,
                 None,
                 &f,
+            );
+        }
+        #[cfg(feature = "peers")]
+        {
+            // OpenQMC's blue-noise samplers (openqmc-rs): per-pixel key and rank tables of
+            // 256 × 256 pixels (u32 each) over Owen-scrambled Sobol and a rank-1 lattice,
+            // dimensions 0-3 of the root domain.
+            use openqmc::{LatticeBnSampler, SobolBnSampler};
+            let sobol = |x: i32, y: i32, i: u32, d: u32| {
+                SobolBnSampler::new(x, y, 0, i as i32).draw_sample_f32::<4>()[d as usize]
+            };
+            push(
+                &mut rows,
+                "OpenQMC sobol bn",
+                "published",
+                spp,
+                512 * 1024,
+                None,
+                &sobol,
+            );
+            let lattice = |x: i32, y: i32, i: u32, d: u32| {
+                LatticeBnSampler::new(x, y, 0, i as i32).draw_sample_f32::<4>()[d as usize]
+            };
+            push(
+                &mut rows,
+                "OpenQMC lattice bn",
+                "published",
+                spp,
+                512 * 1024,
+                None,
+                &lattice,
             );
         }
         let rd = |x: i32, y: i32, i: u32, d: u32| sampler::rd_ign_r2::<4>(x, y, i)[d as usize];
