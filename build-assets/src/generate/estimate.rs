@@ -44,7 +44,7 @@ const FAST_ROUNDS: f64 = 18.0;
 const FAST_ROUNDS_DIRECTIONS: f64 = 10.0;
 
 /// Seconds per multiply-add of the sampler optimiser's scoring and updates.
-const SAMPLER_C: f64 = 1.0e-9;
+const SAMPLER_C: f64 = 4.5e-10;
 /// Seconds per (candidate, integrand, sample) of the sampler's candidate pool.
 const SAMPLER_POOL_C: f64 = 2.0e-9;
 /// Sweeps a sampler bake typically runs.
@@ -117,8 +117,8 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
             } = crate::generate::sampler::Schedule::DEFAULT;
             let pixels = (spec.dims[0] * spec.dims[1]) as f64;
             let pairs = p.sample_dims.div_ceil(2) as f64;
-            let taps = p.spatial.taps().len() as f64;
-            let support = (2.0 * taps - 1.0).powi(2);
+            let width = |n: usize| crate::generate::sampler::support_width(p.spatial, n) as f64;
+            let support = width(spec.dims[0]) * width(spec.dims[1]);
             let per_sweep = pixels * training as f64 * (tries as f64 + 0.1 * support) * SAMPLER_C;
             let pool = pool as f64 * training as f64 * (p.spp as f64 + 2.0) * SAMPLER_POOL_C;
             let waves = (pairs / threads.max(1) as f64).ceil();

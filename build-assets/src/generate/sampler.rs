@@ -296,6 +296,14 @@ fn dot(a: &[f32], b: &[f32]) -> f32 {
 /// autocorrelation (a tent) keeps every offset.
 const SUPPORT_CUTOFF: f32 = 1e-2;
 
+/// Offsets per axis the field keeps for `spatial` on a ring of `n` ([`SUPPORT_CUTOFF`]): what
+/// an accepted key costs, for the estimate.
+pub(crate) fn support_width(spatial: crate::spec::fast::Filter, n: usize) -> usize {
+    let a = ring_autocorrelation(&spatial.taps(), n);
+    let cut = SUPPORT_CUTOFF as f64 * a[0].abs();
+    a.iter().filter(|&&v| v != 0.0 && v.abs() >= cut).count()
+}
+
 /// Partial sums of [`dot`].
 const DOT_LANES: usize = 32;
 
