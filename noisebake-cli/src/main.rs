@@ -109,7 +109,8 @@ enum Command {
     /// samples per pixel: baked sampler tiles against Heitz et al. 2019's tables with
     /// `--features peers`, and the free samplers, at 1–16 spp after four filters); `taa` (masks
     /// under a game's TAA: the history clamped to the 3×3 neighbourhood, dithers at several
-    /// coverages and continuous integrands, a static and a moving camera: about a minute).
+    /// coverages and continuous integrands, a static and a moving camera: about 30 s once its
+    /// bakes are cached).
     Report {
         /// Which section: fast, stochastic, cnj, all, bench, vector, sampler or taa.
         #[arg(default_value = "all")]
