@@ -499,60 +499,59 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
         t: usize,
         screen: f64,
     ) -> Option<f64> {
-        self.gain_dispatch(s, p, q, t, screen, true)
+        self.gain_dispatch::<true>(s, p, q, t, screen)
     }
 
     /// The exact half change of `Σ F d` of [`gain`](Self::gain) (positive: the loss falls),
     /// without giving up early: for swaps accepted whatever their ΔL (a window repaired under
     /// TAA), whose change the loss's bookkeeping still needs.
     pub(super) fn delta(&self, s: &State<C>, p: [usize; 2], q: [usize; 2], t: usize) -> f64 {
-        self.gain_dispatch(s, p, q, t, f64::INFINITY, false)
+        self.gain_dispatch::<false>(s, p, q, t, f64::INFINITY)
             .unwrap_or(0.0)
     }
 
+    /// `BOUNDED`: whether to give up early (a compile-time choice, so the hot path of
+    /// [`gain`](Self::gain) carries no test of it).
     #[inline(always)]
-    fn gain_dispatch(
+    fn gain_dispatch<const BOUNDED: bool>(
         &self,
         s: &State<C>,
         p: [usize; 2],
         q: [usize; 2],
         t: usize,
         screen: f64,
-        bounded: bool,
     ) -> Option<f64> {
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
             // SAFETY: `avx2` is set only when the CPU has AVX2 (`Problem::new`).
-            return unsafe { self.gain_avx2(s, p, q, t, screen, bounded) };
+            return unsafe { self.gain_avx2::<BOUNDED>(s, p, q, t, screen) };
         }
-        self.gain_body(s, p, q, t, screen, bounded)
+        self.gain_body::<BOUNDED>(s, p, q, t, screen)
     }
 
     /// [`gain`](Self::gain) compiled for AVX2: the same operations in the same order, so the
     /// same bits, four `f64` to a register.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn gain_avx2(
+    unsafe fn gain_avx2<const BOUNDED: bool>(
         &self,
         s: &State<C>,
         p: [usize; 2],
         q: [usize; 2],
         t: usize,
         screen: f64,
-        bounded: bool,
     ) -> Option<f64> {
-        self.gain_body(s, p, q, t, screen, bounded)
+        self.gain_body::<BOUNDED>(s, p, q, t, screen)
     }
 
     #[inline(always)]
-    fn gain_body(
+    fn gain_body<const BOUNDED: bool>(
         &self,
         s: &State<C>,
         p: [usize; 2],
         q: [usize; 2],
         t: usize,
         screen: f64,
-        bounded: bool,
     ) -> Option<f64> {
         let [w, h, n] = self.torus.dims;
         let (i, j) = (self.cell(p, t), self.cell(q, t));
@@ -588,7 +587,7 @@ impl<const C: usize, D: Distance<C>> Problem<'_, C, D> {
             acc += lanes.iter().sum::<f64>();
             // `screen · 0` is NaN for an infinite screen at the end: the test is then false.
             let rest = m + 1;
-            if bounded
+            if BOUNDED
                 && (acc + 2.0 * dij * self.tail[rest] <= 0.0
                     || acc + screen * dij * self.spread[rest] <= 0.0)
             {
