@@ -14,6 +14,15 @@ fn noisebake(args: &[&str]) -> (bool, String, String) {
     )
 }
 
+/// A `.npy` file's header text and where its data starts.
+fn npy_header(bytes: &[u8]) -> (String, usize) {
+    let hlen = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    (
+        String::from_utf8_lossy(&bytes[10..10 + hlen]).to_string(),
+        10 + hlen,
+    )
+}
+
 fn tmp(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("noisebake-cli-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
@@ -41,9 +50,9 @@ fn gen_writes_npy_bin_and_png_and_analyze_reads_it() {
     ]);
     assert!(ok, "{err}");
     let bytes = std::fs::read(&npy).unwrap();
-    let hlen = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-    assert_eq!(bytes.len(), 10 + hlen + 16 * 16 * 4 * 2);
-    assert!(String::from_utf8_lossy(&bytes[10..10 + hlen]).contains("'shape': (4, 16, 16)"));
+    let (header, start) = npy_header(&bytes);
+    assert_eq!(bytes.len(), start + 16 * 16 * 4 * 2);
+    assert!(header.contains("'shape': (4, 16, 16)"));
     let bin = d.join("stbn.bin");
     assert!(
         noisebake(&[
@@ -65,7 +74,7 @@ fn gen_writes_npy_bin_and_png_and_analyze_reads_it() {
     );
     assert_eq!(
         std::fs::read(&bin).unwrap(),
-        bytes[10 + hlen..],
+        bytes[start..],
         "same spec, same bytes"
     );
     let png = d.join("mask.png");
@@ -436,13 +445,7 @@ fn gen_writes_a_sampler_tiles_samples_and_its_keys() {
     run(args(&npy, "1"));
     run(args(&bin, "1"));
     run(args(&npy2, "2"));
-    let header = |bytes: &[u8]| {
-        let hlen = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-        (
-            String::from_utf8_lossy(&bytes[10..10 + hlen]).to_string(),
-            10 + hlen,
-        )
-    };
+    let header = npy_header;
     let bytes = std::fs::read(&npy).unwrap();
     let (h, start) = header(&bytes);
     assert!(
@@ -506,11 +509,8 @@ fn gen_bakes_a_fast_mask_for_taa() {
         "{err}"
     );
     let bytes = std::fs::read(&npy).unwrap();
-    let hlen = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-    let v: Vec<f64> = bytes[10 + hlen..]
-        .iter()
-        .map(|&q| q as f64 / 256.0)
-        .collect();
+    let (_, start) = npy_header(&bytes);
+    let v: Vec<f64> = bytes[start..].iter().map(|&q| q as f64 / 256.0).collect();
     assert_eq!(v.len(), 24 * 24 * 8);
     let open = build_assets::generate::fast::open_windows(&v, [24, 24, 8], 0.2);
     assert!(open <= 2, "{open} windows open");
