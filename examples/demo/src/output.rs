@@ -178,70 +178,81 @@ pub fn summary(results: &[AppResult], cfg: &Config) {
     }
 }
 
-/// Whether `a` and `b` are tied after EMA + blur: their difference is within twice its
-/// standard error (from the per-pixel spread, [`Metrics::denoised_se`](crate::Metrics::denoised_se)).
-pub fn tied(a: &crate::Metrics, b: &crate::Metrics) -> bool {
-    (a.denoised - b.denoised).abs() <= 2.0 * a.denoised_se.hypot(b.denoised_se)
+/// One contender of a verdict: its name, its error and that error's standard error, and
+/// whether it is free (computed in the shader: no texture or table to ship).
+pub struct Contender<'a> {
+    /// Name.
+    pub name: &'a str,
+    /// Error.
+    pub err: f64,
+    /// Its standard error.
+    pub se: f64,
+    /// Needs no texture.
+    pub free: bool,
 }
 
-/// Which noise leaves the least error in an application after EMA + blur, which others are
-/// tied with it (within twice the standard error of the difference), and whether a free
-/// construction (IGN, R2, R_d, Sobol: a few lines of shader code, no texture) is as good: from
-/// this run's numbers.
-pub fn verdict(r: &AppResult) -> String {
-    let best = r
-        .runs
-        .iter()
-        .map(|(m, _)| m)
-        .min_by(|a, b| a.denoised.total_cmp(&b.denoised));
-    let Some(best) = best else {
+/// The verdict of a panel, from its own numbers: which contender leaves the least error
+/// (`measure` names what was measured), which are tied with it (within twice the standard
+/// error of the difference), and whether the best free one (white noise aside) is as good —
+/// tied, within 5 %, or how much more it leaves. Every panel of the demo says it this way.
+pub fn judge(measure: &str, rows: &[Contender<'_>]) -> String {
+    let Some(best) = rows.iter().min_by(|a, b| a.err.total_cmp(&b.err)) else {
         return String::new();
     };
-    let ties: Vec<&crate::Metrics> = r
-        .runs
-        .iter()
-        .map(|(m, _)| m)
-        .filter(|m| m.noise != best.noise && tied(m, best))
-        .collect();
-    let free = r
-        .runs
-        .iter()
-        .map(|(m, _)| m)
-        .filter(|m| m.noise.is_free_hash())
-        .min_by(|a, b| a.denoised.total_cmp(&b.denoised));
+    let tied = |r: &Contender<'_>| (r.err - best.err).abs() <= 2.0 * r.se.hypot(best.se);
     let mut s = format!(
-        "least error after EMA + blur: {} ({:.4} ± {:.4})",
-        best.noise.name(),
-        best.denoised,
-        best.denoised_se
+        "least error {measure}: {} ({:.4} ± {:.4})",
+        best.name, best.err, best.se
     );
+    let ties: Vec<&str> = rows
+        .iter()
+        .filter(|r| r.name != best.name && tied(r))
+        .map(|r| r.name)
+        .collect();
     if !ties.is_empty() {
-        let names: Vec<&str> = ties.iter().map(|m| m.noise.name()).collect();
         s += &format!(
             ", tied within twice the standard error with {}",
-            names.join(", ")
+            ties.join(", ")
         );
     }
+    let free = rows
+        .iter()
+        .filter(|r| r.free && r.name != "white")
+        .min_by(|a, b| a.err.total_cmp(&b.err));
     if let Some(f) = free {
-        if best.noise.is_free_hash() {
+        if f.name == best.name {
             s += "; a free construction wins here: no texture needed";
-        } else if tied(f, best) {
-            s += &format!("; {} ties it and needs no texture", f.noise.name());
-        } else if f.denoised <= 1.05 * best.denoised {
+        } else if tied(f) {
+            s += &format!("; {} ties it and needs no texture", f.name);
+        } else if f.err <= 1.05 * best.err {
             s += &format!(
                 "; {} ({:.4}) is within 5 % and needs no texture",
-                f.noise.name(),
-                f.denoised
+                f.name, f.err
             );
         } else {
             s += &format!(
                 "; the best free construction, {}, leaves {:.0} % more",
-                f.noise.name(),
-                100.0 * (f.denoised / best.denoised - 1.0)
+                f.name,
+                100.0 * (f.err / best.err - 1.0)
             );
         }
     }
     s
+}
+
+/// Which noise leaves the least error in an application after EMA + blur ([`judge`]).
+pub fn verdict(r: &AppResult) -> String {
+    let rows: Vec<Contender<'_>> = r
+        .runs
+        .iter()
+        .map(|(m, _)| Contender {
+            name: m.noise.name(),
+            err: m.denoised,
+            se: m.denoised_se,
+            free: m.noise.is_free_hash(),
+        })
+        .collect();
+    judge("after EMA + blur", &rows)
 }
 
 /// Appends the CNJ and stochastic-noise panels to `index.html`.

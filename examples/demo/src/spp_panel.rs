@@ -6,6 +6,7 @@
 
 use crate::apps::{App, Occlusion};
 use crate::noises::AO_RAYS;
+use crate::output::{Contender, judge};
 use crate::{Config, EMA_ALPHA, blur, rmse_se};
 use noisebake::{sampler, warp};
 use noisebake_cli::zsobol::ZSobol;
@@ -100,42 +101,19 @@ pub fn run(cfg: &Config) -> Vec<Row> {
         .collect()
 }
 
-/// The least error on the first frame, what ties with it, and what the best free sampler leaves.
+/// The least error on the first frame, what ties with it, and what the best free sampler
+/// leaves: the demo's one verdict (`output::judge`) on this panel's numbers.
 pub fn verdict(rows: &[Row]) -> String {
-    let Some(best) = rows.iter().min_by(|a, b| a.first.0.total_cmp(&b.first.0)) else {
-        return String::new();
-    };
-    let tied = |r: &Row| (r.first.0 - best.first.0).abs() <= 2.0 * r.first.1.hypot(best.first.1);
-    let mut s = format!(
-        "least error on one frame: {} ({:.4} ± {:.4})",
-        best.name, best.first.0, best.first.1
-    );
-    let ties: Vec<&str> = rows
+    let rows: Vec<Contender<'_>> = rows
         .iter()
-        .filter(|r| r.name != best.name && tied(r))
-        .map(|r| r.name)
+        .map(|r| Contender {
+            name: r.name,
+            err: r.first.0,
+            se: r.first.1,
+            free: r.free,
+        })
         .collect();
-    if !ties.is_empty() {
-        s += &format!(", tied with {}", ties.join(", "));
-    }
-    if let Some(f) = rows
-        .iter()
-        .filter(|r| r.free && r.name != "white")
-        .min_by(|a, b| a.first.0.total_cmp(&b.first.0))
-    {
-        if f.name == best.name {
-            s += "; a free sampler wins here: no table needed";
-        } else if tied(f) {
-            s += &format!("; {} ties it and needs no table", f.name);
-        } else {
-            s += &format!(
-                "; the best free sampler, {}, leaves {:.0} % more",
-                f.name,
-                100.0 * (f.first.0 / best.first.0 - 1.0)
-            );
-        }
-    }
-    s
+    judge("on one frame", &rows)
 }
 
 /// Prints the panel.

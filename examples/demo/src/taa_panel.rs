@@ -6,6 +6,7 @@
 
 use crate::apps::{App, Transparency};
 use crate::noises::Noise;
+use crate::output::{Contender, judge};
 use crate::{Config, EMA_ALPHA, blur, rmse_se};
 use rayon::prelude::*;
 
@@ -114,45 +115,19 @@ pub fn run(cfg: &Config) -> Vec<Row> {
         .collect()
 }
 
-/// Which noise leaves the least error under TAA, which tie with it (within twice the standard
-/// error of the difference), and what the best free construction leaves.
+/// Which noise leaves the least error under TAA, which tie with it, and what the best free
+/// construction leaves: the demo's one verdict (`output::judge`) on this panel's numbers.
 pub fn verdict(rows: &[Row]) -> String {
-    let Some(best) = rows.iter().min_by(|a, b| a.taa.0.total_cmp(&b.taa.0)) else {
-        return String::new();
-    };
-    let tied = |a: &Row| (a.taa.0 - best.taa.0).abs() <= 2.0 * a.taa.1.hypot(best.taa.1);
-    let ties: Vec<&str> = rows
+    let rows: Vec<Contender<'_>> = rows
         .iter()
-        .filter(|r| r.noise != best.noise && tied(r))
-        .map(|r| r.noise.name())
+        .map(|r| Contender {
+            name: r.noise.name(),
+            err: r.taa.0,
+            se: r.taa.1,
+            free: r.noise.is_free_hash(),
+        })
         .collect();
-    let mut s = format!(
-        "least error under TAA: {} ({:.4} ± {:.4})",
-        best.noise.name(),
-        best.taa.0,
-        best.taa.1
-    );
-    if !ties.is_empty() {
-        s += &format!(", tied with {}", ties.join(", "));
-    }
-    let free = rows
-        .iter()
-        .filter(|r| r.noise.is_free_hash())
-        .min_by(|a, b| a.taa.0.total_cmp(&b.taa.0));
-    if let Some(f) = free {
-        if f.noise == best.noise {
-            s += "; a free construction wins here: no texture needed";
-        } else if tied(f) {
-            s += &format!("; {} ties it and needs no texture", f.noise.name());
-        } else {
-            s += &format!(
-                "; the best free construction, {}, leaves {:.0} % more",
-                f.noise.name(),
-                100.0 * (f.taa.0 / best.taa.0 - 1.0)
-            );
-        }
-    }
-    s
+    judge("under TAA", &rows)
 }
 
 /// Prints the panel.
