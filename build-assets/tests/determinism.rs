@@ -74,5 +74,5 @@ const GOLDEN: [u64; 13] = [
     0xec72c00d766b7a25,
     0x1a6fc64ea2ffa362,
     0xd569656c31a8846c,
-    0x2cd21203182deab5,
+    0xb0ebda68ebe5837f,
 ];

@@ -25,6 +25,14 @@ fn zero_and_huge_dims() {
         &error("kind = \"stbn\"\ndims = \"64x64\""),
         &["`dims` must be an array"],
     );
+    has(
+        &error("kind = \"sampler\"\ndims = [512, 256]"),
+        &[
+            "noise.toml:4:",
+            "a sampler tile of [512, 256] has 131072 pixels; the limit is 65536",
+        ],
+    );
+    spec("kind = \"sampler\"\ndims = [256, 256]");
 }
 
 #[test]

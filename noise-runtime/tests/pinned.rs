@@ -401,4 +401,28 @@ fn samplers_are_pinned() {
             0x3f4f2f97, 0x3c8d0da0,
         ],
     );
+    // A baked tile's points: Sobol indices of blocks and the pairs' scrambled values.
+    let keys = [
+        (0u32, 0u32, 0u32, 1u32),
+        (7, 3, 5, 8),
+        (0xffff, 2, 2, 3),
+        (40_000, 9, 63, 64),
+    ];
+    check(
+        "sampler tile",
+        keys.iter()
+            .flat_map(|&(key, frame, i, spp)| {
+                let index = sampler::tile_index(key, frame, i, spp);
+                [
+                    index,
+                    sampler::tile_value(index, 0, 0),
+                    sampler::tile_value(index, 3, 1),
+                ]
+            })
+            .collect(),
+        &[
+            0x00000000, 0x7670e3ea, 0x2934cfc7, 0x00000025, 0x93f953f6, 0x8bc940cc, 0x0003fff6,
+            0x12268c3e, 0x1c1d4c85, 0x0027127f, 0xfa968efa, 0xe47af949,
+        ],
+    );
 }

@@ -412,8 +412,9 @@ fn nb_sobol_owen(p: vec2<i32>, frame: u32, seed: u32) -> vec4<f32> {
 
 // Dimension d of sample i of pixel p in frame `frame` of a baked sampler tile, as a 32-bit
 // fraction (SamplerTile::sample_bits): `keys` is the tile's r16uint key mask (one layer per
-// dimension), `spp` the samples per frame it was baked for. A pair of dimensions reads its two
-// keys, and the sample is the pair's (frame·spp + i)-th shuffled, Owen-scrambled Sobol point.
+// dimension), `spp` the samples per frame it was baked for. A pair of dimensions reads its key
+// (two layers), and the sample is point i of block key ^ frame of the pair's Owen-scrambled
+// Sobol sequence, blocks being spp rounded up to a power of two long (tile_index, tile_value).
 fn nb_sampler_tile_bits(keys: texture_2d_array<u32>, p: vec2<i32>, frame: u32, i: u32, d: u32, spp: u32) -> u32 {
     let dims = textureNumLayers(keys);
     let size = textureDimensions(keys);
@@ -424,10 +425,12 @@ fn nb_sampler_tile_bits(keys: texture_2d_array<u32>, p: vec2<i32>, frame: u32, i
     if (first + 1u < dims) {
         key |= textureLoad(keys, c, first + 1u, 0).x << 16u;
     }
-    let n = frame * spp + i % spp;
-    let index = nb_owen(n, nb_seed_combine(key, 0x53485546u));
+    let shift = 32u - countLeadingZeros(max(spp, 1u) - 1u);
+    let base = select(0u, (key ^ frame) << min(shift, 31u), shift < 32u);
+    let index = base | (i % spp);
     let axis = dd & 1u;
-    return nb_owen(nb_sobol4(index)[axis], nb_seed_combine(key, axis));
+    let seed = nb_seed_combine(nb_seed_combine(0x53485546u, dd >> 1u), axis);
+    return nb_owen(nb_sobol4(index)[axis], seed);
 }
 
 // The same in [0, 1) (SamplerTile::sample).

@@ -45,7 +45,7 @@ const FAST_ROUNDS_DIRECTIONS: f64 = 10.0;
 
 /// Seconds per multiply-add of the sampler optimiser's scoring and updates.
 const SAMPLER_C: f64 = 4.5e-10;
-/// Seconds per (candidate, integrand, sample) of the sampler's candidate pool.
+/// Seconds per (block, integrand, sample) of the sampler's pool table.
 const SAMPLER_POOL_C: f64 = 2.0e-9;
 /// Sweeps a sampler bake typically runs.
 const SAMPLER_SWEEPS: f64 = 20.0;
@@ -109,18 +109,16 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
             // Per pair and sweep, every pixel scores `tries` candidates (a dot product over
             // the training values) and a share of them update the filter's support; pairs run
             // on their own threads. Sweeps: what a bake typically needs before its gain is spent.
-            let crate::generate::sampler::Schedule {
-                pool,
-                tries,
-                training,
-                ..
-            } = crate::generate::sampler::Schedule::DEFAULT;
-            let pixels = (spec.dims[0] * spec.dims[1]) as f64;
+            let s = crate::generate::sampler::Schedule::DEFAULT;
+            let pixels = spec.dims[0] * spec.dims[1];
+            let len = crate::generate::sampler::training_len(s.training, p.frames);
+            let blocks = crate::generate::sampler::pool_blocks(pixels, p.spp, p.frames, len, &s);
+            let (pixels, len) = (pixels as f64, len as f64);
             let pairs = p.sample_dims.div_ceil(2) as f64;
             let width = |n: usize| crate::generate::sampler::support_width(p.spatial, n) as f64;
             let support = width(spec.dims[0]) * width(spec.dims[1]);
-            let per_sweep = pixels * training as f64 * (tries as f64 + 0.1 * support) * SAMPLER_C;
-            let pool = pool as f64 * training as f64 * (p.spp as f64 + 2.0) * SAMPLER_POOL_C;
+            let per_sweep = pixels * len * (s.candidates as f64 + 0.1 * support) * SAMPLER_C;
+            let pool = blocks as f64 * len * (p.spp as f64 + 2.0) * SAMPLER_POOL_C;
             let waves = (pairs / threads.max(1) as f64).ceil();
             Estimate {
                 texels: n,

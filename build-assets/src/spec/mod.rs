@@ -425,6 +425,17 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         }
         "sampler" => {
             want_dims(2, 2)?;
+            let pixels = dims[0].saturating_mul(dims[1]);
+            if pixels > sampler::MAX_PIXELS {
+                return Err(SpecError::at(
+                    "dims",
+                    dims_v.span,
+                    format!(
+                        "a sampler tile of {dims:?} has {pixels} pixels; the limit is {} (256×256: a pixel's key indexes a pool of at most 2^16 blocks)",
+                        sampler::MAX_PIXELS
+                    ),
+                ));
+            }
             if format != Format::U16 {
                 return Err(SpecError::at(
                     "format",

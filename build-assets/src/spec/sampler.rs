@@ -24,6 +24,9 @@ pub struct SamplerParams {
 pub const MAX_SPP: u32 = 64;
 /// Most dimensions per sample.
 pub const MAX_SAMPLE_DIMS: u32 = 8;
+/// Most pixels in a tile: a lone last dimension's key (one 16-bit layer) indexes the pool of
+/// blocks, which holds at least one per pixel.
+pub const MAX_PIXELS: usize = 1 << 16;
 /// Most frames the keys are optimised for.
 pub const MAX_FRAMES: u32 = 64;
 /// The spatial filter when the spec leaves it out.

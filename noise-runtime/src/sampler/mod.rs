@@ -26,7 +26,7 @@
 //! `nb_rd3_ign_r2` and `nb_sobol_owen` in the WGSL library give the same bits.
 
 mod tile;
-pub use tile::{SamplerTile, tile_value};
+pub use tile::{SamplerTile, tile_index, tile_value};
 
 use crate::hash::hash2;
 use crate::sequence::{GOLDEN, R2_A1, R2_A2, frac_mul, to_unit};

@@ -172,12 +172,23 @@ RMSE of the per-pixel mean of spp samples of 256 half-planes (visibility edges) 
   apart. `tile (F)`: a sampler tile baked for that spp and filter F (kind `sampler`,
   sample_dims 4). bytes: what a game ships (0: computed in the shader).";
 
-/// A baked tile's lookup through the runtime's view (frame 0: sample `i` is the pair's sample
-/// `i` for any `i` below the view's 64).
-fn tile_lookup(keys: Vec<u16>) -> impl Fn(i32, i32, u32, u32) -> f32 + Sync {
+/// A baked tile's lookup through the runtime's view for `spp` (the view's `SPP` sets the
+/// blocks' length, so it must be the one the tile was baked for), in frame 0.
+pub fn tile_lookup(keys: Vec<u16>, spp: u32) -> Box<dyn Fn(i32, i32, u32, u32) -> f32 + Sync> {
+    use noise_runtime::{Mask3, SamplerTile};
     let bytes: &'static [u8] = Vec::leak(keys.iter().flat_map(|k| k.to_le_bytes()).collect());
-    let tile = noise_runtime::SamplerTile::<128, 128, 64, 4>::new(noise_runtime::Mask3::new(bytes));
-    move |x, y, i, d| tile.sample(x, y, 0, i, d)
+    macro_rules! view {
+        ($($spp:literal)*) => {
+            match spp {
+                $($spp => {
+                    let t = SamplerTile::<128, 128, $spp, 4>::new(Mask3::new(bytes));
+                    Box::new(move |x, y, i, d| t.sample(x, y, 0, i, d))
+                })*
+                _ => panic!("no view for {spp} spp"),
+            }
+        };
+    }
+    view!(1 2 4 8 16)
 }
 
 /// Bakes the tile of `spp` for `spatial`; returns the keys and the seconds it took.
@@ -267,8 +278,8 @@ pub fn run(out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
         ] {
             let (keys, secs) = bake(spp, spatial, 1);
             let bytes = keys.len() * 2;
-            let f = tile_lookup(keys);
-            push(&mut rows, label, "baked", spp, bytes, Some(secs), &f);
+            let f = tile_lookup(keys, spp);
+            push(&mut rows, label, "baked", spp, bytes, Some(secs), &*f);
         }
         #[cfg(feature = "peers")]
         if let Some(f) = heitz(spp) {
