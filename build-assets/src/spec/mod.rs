@@ -57,9 +57,9 @@ pub enum Kind {
     Golden(VacParams),
     /// A filter-adapted mask (FAST, Donnelly et al. 2024).
     Fast(FastParams),
-    /// A sampler tile: per-pixel keys of Owen-scrambled Sobol samples whose errors are blue
-    /// under a filter (Heitz et al. 2019); `dims` is the tile, stored as one 16-bit layer of
-    /// keys per sample dimension.
+    /// A sampler tile: per pixel and pair of dimensions, the block of Owen-scrambled Sobol
+    /// points it takes, arranged so the errors are blue under a filter; `dims` is the tile,
+    /// stored as one 16-bit layer of keys per sample dimension.
     Sampler(SamplerParams),
 }
 

@@ -1,6 +1,6 @@
 //! The `sampler` kind: a tile of per-pixel keys for `spp` samples × `sample_dims` dimensions
-//! per pixel (`noise_runtime::SamplerTile`), chosen so that the pixels' Monte Carlo errors are
-//! blue under the scene's denoiser. Its parameters, their parsing, defaults and validation; the
+//! per pixel (`noise_runtime::SamplerTile`: a key is the block of Sobol points a pixel takes),
+//! chosen so that the pixels' Monte Carlo errors are blue under the scene's denoiser. Its parameters, their parsing, defaults and validation; the
 //! generator (`crate::generate::sampler`) reads them.
 
 use super::fast::{Filter, count, spatial_filter};
@@ -15,8 +15,8 @@ pub struct SamplerParams {
     pub sample_dims: u32,
     /// The denoiser the errors should be blue for (separable in x and y; default Gaussian σ 1).
     pub spatial: Filter,
-    /// Frames whose samples (frame `f` uses samples `f·spp … f·spp + spp − 1`) the keys are
-    /// chosen for, each frame's error filtered alone; 1 (the default) optimises the first.
+    /// Frames whose samples (frame `f` takes block `key ^ f`) the keys are chosen for, each
+    /// frame's error filtered alone; 1 (the default) optimises the first.
     pub frames: u32,
 }
 

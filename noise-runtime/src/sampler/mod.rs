@@ -18,9 +18,10 @@
 //!   each pixel's first 2^m frames form a (0, m, 2)-net in every pair of its first two
 //!   dimensions.
 //!
-//! - [`SamplerTile`]: the baked form (kind `sampler`): the same Owen-scrambled Sobol points,
-//!   keyed per pixel by a tile whose keys are chosen so that the pixels' errors are blue
-//!   under the scene's denoiser (Heitz et al. 2019's idea, with our own optimiser).
+//! - [`SamplerTile`]: the baked form (kind `sampler`): per pixel, a block of one Owen-scrambled
+//!   Sobol sequence, the blocks arranged at build time so that the pixels' errors are blue
+//!   under the scene's denoiser (Heitz et al. 2019's goal over Ahmed and Wonka 2020's blocks,
+//!   with our own optimiser).
 //!
 //! Everything is integer arithmetic on 32-bit fractions, so `nb_ign_r2`, `nb_rd2_ign_r2`,
 //! `nb_rd3_ign_r2` and `nb_sobol_owen` in the WGSL library give the same bits.
