@@ -48,7 +48,7 @@ const SAMPLER_C: f64 = 4.5e-10;
 /// Seconds per (block, integrand, sample) of the sampler's pool table.
 const SAMPLER_POOL_C: f64 = 2.0e-9;
 /// Sweeps a sampler bake typically runs.
-const SAMPLER_SWEEPS: f64 = 20.0;
+const SAMPLER_SWEEPS: f64 = 15.0;
 
 /// Generations expected to take longer than this get an up-front message.
 pub const ANNOUNCE_SECONDS: f64 = 10.0;

@@ -5,16 +5,20 @@
 //! the table as JSON and a log-log plot to the report folder; the README's bake times come
 //! from it.
 //!
-//! For each FAST case at its largest size it also runs the optimiser on past its stopping
-//! rule to the round cap ([`Curve`]): the loss's decrease against time, the round where the
-//! bake stopped, and the error there and at the cap, which is the trade the stopping rule
-//! ([`build_assets::generate::fast::converged`] of the case's sample space) makes.
+//! For each FAST case and the sampler tile at its largest size it also runs the optimiser on
+//! past its stopping rule to the round cap ([`Curve`]): the loss's decrease against time, the
+//! round (sweep, for the tile) where the bake stopped, and the error there and at the cap, which
+//! is the trade the stopping rule ([`build_assets::generate::fast::converged`] of the case's
+//! sample space; [`build_assets::generate::sampler::spent`]) makes.
 
 use crate::export::plot::{Labels, PALETTE, Series, line_plot};
 use crate::report::compare::{loss_params, measure};
+use crate::report::sampler;
 use crate::report::vector::{self, Space};
 use build_assets::generate::estimate::estimate_with_threads;
 use build_assets::generate::fast::{self, MAX_ROUNDS};
+use build_assets::generate::sampler::{self as gen_sampler, Schedule};
+use build_assets::spec::sampler::SamplerParams;
 use build_assets::spec::{Kind, TextureSpec};
 use serde::Serialize;
 use std::path::Path;
@@ -38,22 +42,25 @@ pub struct Row {
     /// For FAST masks, the error after the filter the mask is made for: scalar masks, RMSE of
     /// step integrands after Gaussian σ 1.3435 × plain EMA (α 0.1, `report fast`'s measure);
     /// the cosine-hemisphere mask, RMSE of visibility integrands after box 5×5 × plain EMA
-    /// (`report vector`'s measure).
+    /// (`report vector`'s measure); the 128² sampler tile, RMSE of its 4-sample estimates after
+    /// Gaussian σ 1, dimensions 0–1 (`report sampler`'s measure).
     pub rmse: Option<f64>,
 }
 
-/// A FAST case at its largest size, on 2 threads, run on past the bake's stopping rule to the
-/// round cap.
+/// A FAST case or the sampler tile at its largest size, on 2 threads, run on past the bake's
+/// stopping rule to the round cap.
 #[derive(Clone, Debug, Serialize)]
 pub struct Curve {
     /// The case.
     pub case: String,
     /// Texture dimensions.
     pub dims: Vec<usize>,
-    /// `(seconds, decrease of the loss since the start)` after each round.
+    /// `(seconds, decrease of the loss since the start)` after each round (the tile: each
+    /// sweep of its first pair of dimensions).
     pub points: Vec<(f64, f64)>,
-    /// The round after which the bake stops (1-based): the first whose gain is at most
-    /// the sample space's threshold (`fast::converged`) of the decrease so far.
+    /// The round after which the bake stops (1-based): FAST's first whose gain is at most the
+    /// sample space's threshold (`fast::converged`) of the decrease so far; the tile's first
+    /// sweep whose gain is under `Schedule::stop_gain` of the loss left (`sampler::spent`).
     pub stop_round: usize,
     /// The error at the round cap (the bake's error is its row's `rmse`).
     pub rmse_at_cap: f64,
@@ -77,7 +84,7 @@ pub struct Bench {
     pub rows: Vec<Row>,
     /// Exponents per case and thread count.
     pub fits: Vec<Fit>,
-    /// Each FAST case run on to the round cap.
+    /// Each FAST case and the sampler tile run on to the round cap.
     pub curves: Vec<Curve>,
 }
 
@@ -108,6 +115,11 @@ fn cases(full: bool) -> Vec<(&'static str, &'static str, Vec<Vec<usize>>)> {
             "fast cosine hemisphere u8x3, box 5 x plain EMA",
             "kind = \"fast\"\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 5 }",
             vec![vec![32, 32, 32], vec![64, 64, 32], vec![128, 128, 32]],
+        ),
+        (
+            "sampler 4 spp x 4 dims, gauss 1",
+            "kind = \"sampler\"\nspp = 4\nsample_dims = 4",
+            vec![vec![32, 32], vec![64, 64], vec![128, 128]],
         ),
     ]
 }
@@ -155,7 +167,11 @@ pub fn run(out: &Path, full: bool, log: &mut dyn FnMut(&str)) -> Result<Bench, S
                 let start = Instant::now();
                 let tex = pool.install(|| build_assets::generate(&s, &mut |_, _| {}));
                 let seconds = start.elapsed().as_secs_f64();
-                let rmse = fast_error(name, dims, &tex.values());
+                let rmse = if let Kind::Sampler(p) = &s.kind {
+                    sampler_error(p, dims, &tex.data)
+                } else {
+                    fast_error(name, dims, &tex.values())
+                };
                 let row = Row {
                     case: name.to_string(),
                     dims: dims.clone(),
@@ -237,8 +253,72 @@ fn fast_error(case: &str, dims: &[usize], values: &[f64]) -> Option<f64> {
     }
 }
 
-/// Runs a FAST case on 2 threads to the round cap ([`Curve`]); `None` for other kinds.
+/// The error of a 128² sampler tile (its stored keys) after the filter it is made for
+/// ([`Row::rmse`]); `None` at other sizes.
+fn sampler_error(p: &SamplerParams, dims: &[usize], bytes: &[u8]) -> Option<f64> {
+    if dims != [sampler::TILE, sampler::TILE] || p.sample_dims != sampler::SAMPLE_DIMS {
+        return None;
+    }
+    let keys: Vec<u16> = bytes
+        .chunks_exact(2)
+        .map(|b| u16::from_le_bytes([b[0], b[1]]))
+        .collect();
+    let f = sampler::tile_lookup(keys, p.spp);
+    let ints = sampler::integrands(256, 64, sampler::TEST_SEED);
+    Some(sampler::measure(&*f, p.spp, [0, 1], &ints)[1])
+}
+
+/// Runs the sampler tile on 2 threads to the sweep cap ([`Curve`]).
+fn run_sampler_on(
+    case: &str,
+    s: &TextureSpec,
+    p: &SamplerParams,
+    log: &mut dyn FnMut(&str),
+) -> Result<Curve, String> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .map_err(|e| e.to_string())?;
+    let bake = Schedule::DEFAULT;
+    // A stop gain of 0 never stops: the same sweeps as the bake, then on to the cap.
+    let on = Schedule {
+        stop_gain: 0.0,
+        ..bake
+    };
+    let (w, h) = (s.dims[0], s.dims[1]);
+    let (keys, trace) =
+        pool.install(|| gen_sampler::generate_with(p, w, h, s.seed, &on, &mut |_, _| {}));
+    let (loss, seconds) = (&trace.loss[0], &trace.seconds[0]);
+    let points: Vec<(f64, f64)> = seconds
+        .iter()
+        .zip(loss)
+        .skip(1)
+        .map(|(&t, &l)| (t, loss[0] - l))
+        .collect();
+    let stop_round = sweeps_to_stop(loss, bake.stop_gain);
+    let bytes: Vec<u8> = keys.iter().flat_map(|k| k.to_le_bytes()).collect();
+    let rmse_at_cap = sampler_error(p, &s.dims, &bytes).unwrap_or(f64::NAN);
+    log(&format!(
+        "  {case} {:?}: the bake stops after sweep {stop_round} of {}; run on to the cap: {:.2} s, rmse {rmse_at_cap:.5}",
+        s.dims,
+        points.len(),
+        points.last().map_or(0.0, |p| p.0)
+    ));
+    Ok(Curve {
+        case: case.to_string(),
+        dims: s.dims.clone(),
+        points,
+        stop_round,
+        rmse_at_cap,
+    })
+}
+
+/// Runs a FAST case (or the sampler tile) on 2 threads to the round cap ([`Curve`]); `None`
+/// for other kinds.
 fn run_on(case: &str, s: &TextureSpec, log: &mut dyn FnMut(&str)) -> Result<Option<Curve>, String> {
+    if let Kind::Sampler(p) = &s.kind {
+        return run_sampler_on(case, s, p, log).map(Some);
+    }
     let Kind::Fast(params) = &s.kind else {
         return Ok(None);
     };
@@ -292,6 +372,15 @@ pub fn stop_round(points: &[(f64, f64)], converged: f64) -> usize {
     points.len()
 }
 
+/// The sweep (1-based) after which the sampler's stopping rule ends a run whose loss went
+/// `loss` (the start, then after each sweep): the first whose gain is spent
+/// ([`gen_sampler::spent`], the optimiser's test), or the last.
+pub fn sweeps_to_stop(loss: &[f64], stop_gain: f64) -> usize {
+    (1..loss.len())
+        .find(|&k| gen_sampler::spent(loss[k - 1] - loss[k], loss[k], stop_gain))
+        .unwrap_or(loss.len() - 1)
+}
+
 /// Loss decrease (as a share of the decrease at the cap) against seconds, one line per case.
 fn plot_curves(curves: &[Curve], path: &Path) -> Result<(), String> {
     let series: Vec<Series> = curves
@@ -316,7 +405,8 @@ fn plot_curves(curves: &[Curve], path: &Path) -> Result<(), String> {
         path,
         &series,
         &Labels {
-            title: "FAST: loss decrease against time, run on to the round cap".into(),
+            title: "FAST and the sampler tile: loss decrease against time, run on to the cap"
+                .into(),
             x: "seconds (2 threads)".into(),
             y: "share of the decrease at the cap".into(),
         },
@@ -383,12 +473,41 @@ mod tests {
         }
     }
 
+    /// The same for the sampler tile: the bake stops at the sweep read off the run-on trace.
+    #[test]
+    fn the_sampler_stop_read_off_a_trace_is_the_bakes() {
+        let s = spec("kind = \"sampler\"\nspp = 4\nsample_dims = 2", &[16, 16]).unwrap();
+        let Kind::Sampler(p) = &s.kind else { panic!() };
+        let bake = Schedule {
+            training: 256,
+            stop_gain: 2e-2,
+            ..Schedule::DEFAULT
+        };
+        let on = Schedule {
+            stop_gain: 0.0,
+            ..bake
+        };
+        let (_, baked) = gen_sampler::generate_with(p, 16, 16, 1, &bake, &mut |_, _| {});
+        let (_, ran) = gen_sampler::generate_with(p, 16, 16, 1, &on, &mut |_, _| {});
+        let (baked, ran) = (&baked.loss[0], &ran.loss[0]);
+        assert!(
+            baked.len() < ran.len(),
+            "the rule stops before the cap here"
+        );
+        assert_eq!(sweeps_to_stop(ran, bake.stop_gain), baked.len() - 1);
+        assert_eq!(baked[..], ran[..baked.len()]);
+    }
+
     #[test]
     fn every_case_parses_at_every_size() {
         for (name, body, sizes) in cases(true) {
             for dims in sizes {
                 let s = spec(body, &dims).unwrap_or_else(|e| panic!("{name} {dims:?}: {e}"));
-                assert_eq!(s.texels(), dims.iter().product::<usize>());
+                let layers = match &s.kind {
+                    Kind::Sampler(p) => p.sample_dims as usize,
+                    _ => 1,
+                };
+                assert_eq!(s.texels(), layers * dims.iter().product::<usize>());
             }
         }
     }

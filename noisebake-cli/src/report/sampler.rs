@@ -28,6 +28,8 @@ pub const TILE: usize = 128;
 pub const IMAGE: usize = 256;
 /// Dimensions of the baked tiles.
 pub const SAMPLE_DIMS: u32 = 4;
+/// The seed of the test integrands (never the generator's training edges).
+pub const TEST_SEED: u64 = 0x7e57;
 /// Samples per pixel measured.
 pub const SPPS: [u32; 5] = [1, 2, 4, 8, 16];
 /// Filters applied to the error images, by name.
@@ -249,7 +251,7 @@ fn heitz(spp: u32) -> Option<impl Fn(i32, i32, u32, u32) -> f32 + Sync> {
 /// Runs the report, writes `sampler.json` and `sampler.png` into `out`.
 pub fn run(out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let ints = integrands(256, 64, 0x7e57);
+    let ints = integrands(256, 64, TEST_SEED);
     let mut rows = Vec::new();
     log(&header());
     let mut push = |rows: &mut Vec<Row>,

@@ -71,6 +71,17 @@ impl Schedule {
 pub struct Trace {
     /// Per pair: the loss before the first sweep, then after each sweep.
     pub loss: Vec<Vec<f64>>,
+    /// Per pair: the seconds since the pair began (its table built, then each sweep), beside
+    /// `loss`. Wall time, so not deterministic; nothing generated depends on it.
+    pub seconds: Vec<Vec<f64>>,
+}
+
+/// The stopping rule: a sweep that lowered the loss by `gain`, leaving `loss`, ends the
+/// optimisation when `gain < stop_gain · loss` ([`Schedule::stop_gain`]). The loss does not
+/// fall towards zero (each pixel's own error stays), so the rule is relative to what is left;
+/// `noisebake report bench` runs a tile on to the sweep cap and shows where it stops.
+pub fn spent(gain: f64, loss: f64, stop_gain: f64) -> bool {
+    gain < stop_gain * loss.abs()
 }
 
 /// The keys of a `w × h` tile: `sample_dims` layers of 16-bit keys, x fastest, then y, then the
@@ -98,7 +109,7 @@ pub fn generate_with(
     let lone = p.sample_dims % 2 == 1;
     let total = (pairs * s.max_sweeps) as u64;
     progress(0, total);
-    let results: Vec<(Vec<u32>, Vec<f64>)> = (0..pairs)
+    let results: Vec<(Vec<u32>, Vec<f64>, Vec<f64>)> = (0..pairs)
         .into_par_iter()
         .map(|pair| {
             let axes = if lone && pair == pairs - 1 { 1 } else { 2 };
@@ -117,7 +128,7 @@ pub fn generate_with(
     let n = w * h;
     let mut keys = vec![0u16; n * p.sample_dims as usize];
     let mut trace = Trace::default();
-    for (pair, (k, loss)) in results.into_iter().enumerate() {
+    for (pair, (k, loss, seconds)) in results.into_iter().enumerate() {
         for (i, &key) in k.iter().enumerate() {
             keys[2 * pair * n + i] = key as u16;
             if 2 * pair + 1 < p.sample_dims as usize {
@@ -125,6 +136,7 @@ pub fn generate_with(
             }
         }
         trace.loss.push(loss);
+        trace.seconds.push(seconds);
     }
     (keys, trace)
 }

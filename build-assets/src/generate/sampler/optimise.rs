@@ -315,7 +315,7 @@ fn training_table(
 }
 
 /// Chooses the blocks of pair `pair` (`axes` 2, or 1 for a lone last dimension) for every pixel;
-/// returns them with the loss before and after each sweep.
+/// returns them with the loss before and after each sweep, and the seconds to each.
 pub(super) fn optimise_pair(
     p: &SamplerParams,
     w: usize,
@@ -324,7 +324,8 @@ pub(super) fn optimise_pair(
     pair: u32,
     axes: usize,
     s: &Schedule,
-) -> (Vec<u32>, Vec<f64>) {
+) -> (Vec<u32>, Vec<f64>, Vec<f64>) {
+    let started = std::time::Instant::now();
     let n = w * h;
     let (table, norms) = training_table(p, n, seed, pair, axes, s);
     let (blocks, len) = (norms.len(), table.len);
@@ -343,6 +344,7 @@ pub(super) fn optimise_pair(
     let loss = field.fill(&table, &chosen);
 
     let mut trace = vec![loss];
+    let mut seconds = vec![started.elapsed().as_secs_f64()];
 
     let bits = blocks.trailing_zeros().clamp(1, SIBLING_BITS) as u64;
     let side = 2 * SIBLING_RADIUS as u64 + 1;
@@ -438,11 +440,12 @@ pub(super) fn optimise_pair(
         }
         let l = trace.last().copied().unwrap_or(0.0) - gain;
         trace.push(l);
-        if gain < s.stop_gain * l.abs() {
+        seconds.push(started.elapsed().as_secs_f64());
+        if super::spent(gain, l, s.stop_gain) {
             break;
         }
     }
-    (chosen, trace)
+    (chosen, trace, seconds)
 }
 
 #[cfg(test)]
@@ -488,7 +491,7 @@ mod tests {
             (params(1, 1, Filter::Gauss { sigma: 1.5 }), 1),
         ] {
             let (w, h) = (16, 8);
-            let (chosen, trace) = optimise_pair(&p, w, h, 11, 0, axes, &s);
+            let (chosen, trace, _) = optimise_pair(&p, w, h, 11, 0, axes, &s);
             assert!(trace.windows(2).all(|t| t[1] <= t[0]), "{trace:?}");
             assert!(trace.last().unwrap() < &(0.9 * trace[0]), "{trace:?}");
             let (table, _) = training_table(&p, w * h, 11, 0, axes, &s);
