@@ -124,6 +124,39 @@ fn bad_fast_specs_name_the_key() {
             "got 0.1",
         ],
     );
+    for (filter, want) in [
+        (
+            "{ kind = \"taa\", motion = [3] }",
+            "`temporal_filter.motion` takes two integers (pixels per frame in x and y), got 1",
+        ),
+        (
+            "{ kind = \"taa\", motion = [3, 1.5] }",
+            "`temporal_filter.motion` must be integers (whole pixels per frame)",
+        ),
+        (
+            "{ kind = \"taa\", motion = [9, 1] }",
+            "`temporal_filter.motion` must be within ±8 pixels per frame, got 9",
+        ),
+        (
+            "{ kind = \"taa\", moving = 0.3 }",
+            "`temporal_filter.moving` weighs a moving camera: give its `motion` too",
+        ),
+        (
+            "{ kind = \"taa\", motion = [1, 0], moving = 1 }",
+            "`temporal_filter.moving` must be in [0, 1), got 1",
+        ),
+        (
+            "{ kind = \"taa\", motion = \"3,1\" }",
+            "`temporal_filter.motion` must be two integers like [3, 1]",
+        ),
+    ] {
+        has(
+            error(&format!(
+                "kind = \"fast\"\ndims = [16, 16, 4]\ntemporal_filter = {filter}"
+            )),
+            &[want, "noise.toml:5:"],
+        );
+    }
     has(
         error(
             "kind = \"fast\"\ndims = [16, 16, 4]\nsample_space = \"sphere\"\nformat = \"u8x3\"\ntemporal_filter = { kind = \"taa\" }",

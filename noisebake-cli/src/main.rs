@@ -102,15 +102,15 @@ enum Command {
     /// The speed-against-error report: `fast` (FAST masks against every other mask after the
     /// filters they are made for), `stochastic` (noise functions), `cnj` (point sets, CNJ Table
     /// 2), or `all` (the default, these three); `bench` (bake time against size for every
-    /// generator, on one and two threads, beside its estimate, and each FAST case run on to
-    /// the round cap: about 8 minutes on 2 cores);
+    /// generator, on one and two threads, beside its estimate, and each FAST case and a
+    /// sampler tile run on to the cap: about 5 minutes on 2 cores);
     /// `vector` (directions: our vector FAST masks against EA's and the free constructions
     /// after box 5×5 and Gaussian σ 1 × EMA, cosine hemisphere and sphere); `sampler` (several
     /// samples per pixel: baked sampler tiles against Heitz et al. 2019's tables with
     /// `--features peers`, and the free samplers, at 1–16 spp after four filters); `taa` (masks
     /// under a game's TAA: the history clamped to the 3×3 neighbourhood, dithers at several
     /// coverages and continuous integrands, a static and a moving camera: about 30 s once its
-    /// bakes are cached).
+    /// bakes are cached, about 2 minutes cold).
     Report {
         /// Which section: fast, stochastic, cnj, all, bench, vector, sampler or taa.
         #[arg(default_value = "all")]

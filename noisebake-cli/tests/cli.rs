@@ -505,7 +505,7 @@ fn gen_bakes_a_fast_mask_for_taa() {
     ]);
     assert!(ok, "{err}");
     assert!(
-        err.contains("temporal_filter={kind=taa,alpha=0.1,coverage=0.2}"),
+        err.contains("temporal_filter={kind=taa,alpha=0.1,coverage=0.2,motion=[0,0],moving=0}"),
         "{err}"
     );
     let bytes = std::fs::read(&npy).unwrap();

@@ -43,6 +43,11 @@ const FAST_ROUNDS: f64 = 18.0;
 /// The same for directions, which stop at `optimize::CONVERGED_DIRECTIONS`.
 const FAST_ROUNDS_DIRECTIONS: f64 = 10.0;
 
+/// How much more a coupling costs when a `taa` filter's `motion` shears the footprint: its
+/// offsets reach across the texture, out of the caches (`report taa`'s moving mask: 5.8 s a
+/// round where the estimate counted 2.0).
+const FAST_MOVING: f64 = 2.5;
+
 /// Seconds per multiply-add of the sampler optimiser's scoring and updates.
 const SAMPLER_C: f64 = 4.5e-10;
 /// Seconds per (block, integrand, sample) of the sampler's pool table.
@@ -99,6 +104,11 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
             let parallel =
                 (tiles(spec.dims[0], f.radius[0]) * tiles(spec.dims[1], f.radius[1])) as f64;
             let speedup = (threads as f64).min(parallel).max(1.0);
+            let per = if p.temporal.motion().is_some() {
+                per * FAST_MOVING
+            } else {
+                per
+            };
             Estimate {
                 texels: n,
                 footprint: fp,
@@ -106,7 +116,7 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
             }
         }
         Kind::Sampler(p) => {
-            // Per pair and sweep, every pixel scores `tries` candidates (a dot product over
+            // Per pair and sweep, every pixel scores `candidates` blocks (a dot product over
             // the training values) and a share of them update the filter's support; pairs run
             // on their own threads. Sweeps: what a bake typically needs before its gain is spent.
             let s = crate::generate::sampler::Schedule::DEFAULT;

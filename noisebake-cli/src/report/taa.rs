@@ -206,6 +206,11 @@ pub fn run(out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
             "{ kind = \"taa\", alpha = 0.1, coverage = 0.25 }",
         ),
         (
+            "FAST_TAA_MOVING",
+            "FAST (ours, for TAA, moving (3, 1))",
+            "{ kind = \"taa\", alpha = 0.1, motion = [3, 1] }",
+        ),
+        (
             "FAST",
             "FAST (ours, for the plain EMA)",
             "{ kind = \"ema\", alpha = 0.1 }",

@@ -121,8 +121,17 @@ impl Footprint {
         let fy = ring_autocorrelation(&taps, h);
         let ft = temporal.overlap(t);
         let at = |f: &[f64], d: i32| f[d.rem_euclid(f.len() as i32) as usize];
+        // A moving camera (`taa` with `motion`): the overlap of the EMA followed along `v` is
+        // the static one shifted by `τ·v`, mixed in by its share.
+        let motion = temporal.motion();
         let weight = |dx: i32, dy: i32, dt: i32| -> f64 {
-            let sxy = at(&fx, dx) * at(&fy, dy);
+            let still = at(&fx, dx) * at(&fy, dy);
+            let sxy = match motion {
+                None => still,
+                Some(([vx, vy], moving)) => {
+                    (1.0 - moving) * still + moving * at(&fx, dx - dt * vx) * at(&fy, dy - dt * vy)
+                }
+            };
             match combine {
                 Combine::Product => sxy * at(&ft, dt),
                 Combine::Separate(wt) => {
@@ -214,6 +223,46 @@ mod tests {
         let b = Filter::Binomial { order: 4 }.taps();
         let want = [1.0, 4.0, 6.0, 4.0, 1.0].map(|x| x / 16.0);
         assert_eq!(b, want);
+    }
+
+    /// A moving camera's footprint is the static one sheared by `τ·v` (the overlap of the EMA
+    /// followed along `v`: `ft(τ) · G(d − τ·v)`), mixed in by its share.
+    #[test]
+    fn a_moving_footprint_is_the_static_one_sheared() {
+        let dims = [16, 16, 8];
+        let spatial = Filter::Gauss { sigma: 1.0 };
+        let taa = |motion, moving| TemporalFilter::Taa {
+            alpha: 0.2,
+            coverage: 0.2,
+            motion,
+            moving,
+        };
+        let weights = |t: TemporalFilter| -> std::collections::HashMap<(i32, i32, i32), f64> {
+            let f = Footprint::new(dims, spatial, t, Combine::Product);
+            f.rows
+                .iter()
+                .flat_map(|r| r.entries.iter().map(move |&(dx, w)| ((dx, r.dy, r.dt), w)))
+                .collect()
+        };
+        let wrap = |d: i32, n: i32| (d + n / 2 - 1).rem_euclid(n) - (n / 2 - 1);
+        let still = weights(taa([0, 0], 0.0));
+        let moving = weights(taa([3, -1], 1.0));
+        let mut sheared = 0;
+        for (&(dx, dy, dt), &w) in &moving {
+            let at = (wrap(dx - 3 * dt, 16), wrap(dy + dt, 16), dt);
+            let s = still.get(&at).copied().unwrap_or(0.0);
+            assert!(
+                (w - s).abs() < 1e-12 * w.abs().max(1e-3),
+                "{dx} {dy} {dt}: {w} {s}"
+            );
+            sheared += (dt != 0 && (dx, dy) != (at.0, at.1)) as usize;
+        }
+        assert!(sheared > 100, "{sheared}");
+        // Half and half: the average of the two.
+        let mixed = weights(taa([3, -1], 0.5));
+        let (&k, &w) = mixed.iter().find(|(k, _)| k.2 == 2).unwrap();
+        let want = 0.5 * still.get(&k).unwrap_or(&0.0) + 0.5 * moving.get(&k).unwrap_or(&0.0);
+        assert!((w - want).abs() < 1e-12, "{k:?}: {w} {want}");
     }
 
     #[test]

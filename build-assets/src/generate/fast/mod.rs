@@ -546,6 +546,8 @@ mod tests {
             temporal: TemporalFilter::Taa {
                 alpha: 0.1,
                 coverage,
+                motion: [0, 0],
+                moving: 0.0,
             },
             ..ema.clone()
         };
