@@ -10,7 +10,7 @@
 //! Monte Carlo Errors as a Blue Noise in Screen Space"), over the block structure of Ahmed and
 //! Wonka (2020, "Screen-space blue-noise diffusion of Monte Carlo sampling error via
 //! hierarchical ordering of pixels"), where neighbours holding sibling blocks are stratified
-//! together. [`training`] holds the integrands and the pool's table, [`optimise`] the loss and
+//! together. `training.rs` holds the integrands and the pool's table, `optimise.rs` the loss and
 //! the moves.
 //!
 //! - **Pairs.** Each pair of dimensions has its own sequence and keys and is optimised alone,

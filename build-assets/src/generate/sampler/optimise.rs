@@ -26,7 +26,7 @@ use crate::generate::rng::{SplitMix64, derive_seed, permutation};
 use crate::spec::fast::Filter;
 use crate::spec::sampler::SamplerParams;
 
-/// Fewest integrands per optimised frame (a multiple of [`DOT_LANES`]).
+/// Fewest integrands per optimised frame (a multiple of the dot products' 32 lanes).
 pub const MIN_INTEGRANDS: usize = 32;
 
 /// Most blocks in a pair's pool: a lone last dimension's key is one 16-bit layer.
