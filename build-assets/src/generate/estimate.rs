@@ -44,8 +44,7 @@ const FAST_ROUNDS: f64 = 18.0;
 const FAST_ROUNDS_DIRECTIONS: f64 = 10.0;
 
 /// How much more a coupling costs when a `taa` filter's `motion` shears the footprint: its
-/// offsets reach across the texture, out of the caches (`report taa`'s moving mask: 5.8 s a
-/// round where the estimate counted 2.0).
+/// offsets reach across the texture, out of the caches (fitted to `report taa`'s moving masks).
 const FAST_MOVING: f64 = 2.5;
 
 /// Seconds per multiply-add of the sampler optimiser's scoring and updates.

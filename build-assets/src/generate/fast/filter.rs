@@ -67,6 +67,10 @@ impl TemporalFilter {
     }
 }
 
+/// Lags of a moving camera's EMA whose weight falls below this fraction of the newest frame's
+/// are left out of its overlap (the static EMA folds them all onto its ring).
+const MOTION_LAG_CUTOFF: f64 = 1e-9;
+
 /// Pair weights below this fraction of the largest are dropped from the footprint.
 pub const FOOTPRINT_CUTOFF: f64 = 1e-4;
 
@@ -121,17 +125,37 @@ impl Footprint {
         let fy = ring_autocorrelation(&taps, h);
         let ft = temporal.overlap(t);
         let at = |f: &[f64], d: i32| f[d.rem_euclid(f.len() as i32) as usize];
-        // A moving camera (`taa` with `motion`): the overlap of the EMA followed along `v` is
-        // the static one shifted by `τ·v`, mixed in by its share.
-        let motion = temporal.motion();
-        let weight = |dx: i32, dy: i32, dt: i32| -> f64 {
-            let still = at(&fx, dx) * at(&fy, dy);
-            let sxy = match motion {
-                None => still,
-                Some(([vx, vy], moving)) => {
-                    (1.0 - moving) * still + moving * at(&fx, dx - dt * vx) * at(&fy, dy - dt * vy)
-                }
+        // A moving camera (`taa` with `motion`, product only): the EMA followed along `v`. Its
+        // taps `a_l = α(1 − α)^l` sit at frame `−l` and pixel `−l·v`, so its overlap at
+        // `(d, τ)` is `Σ_{m ≡ τ (mod t)} A(m) · G(d − m·v)`, with `A(m) = α²(1 − α)^|m| /
+        // (1 − (1 − α)²)` the taps' autocorrelation on the line and `G` the spatial one on the
+        // torus; each lag `m` keeps its own shift (a loop of `t` frames moves the picture `t·v`).
+        // (For `v = 0` the sum is the static EMA's folded overlap, `overlap`.) It is mixed in by
+        // its share.
+        let moving = temporal.motion().map(|(v, share)| {
+            let alpha = match temporal.weights() {
+                TemporalFilter::Ema { alpha, .. } => alpha,
+                _ => unreachable!("only a `taa` filter has a motion"),
             };
+            let reach = (MOTION_LAG_CUTOFF.ln() / (1.0 - alpha).ln()).ceil() as i32;
+            // The lags of each residue mod t.
+            let mut lags: Vec<Vec<(i32, f64)>> = vec![Vec::new(); t];
+            for m in -reach..=reach {
+                let a = alpha * alpha * (1.0 - alpha).powi(m.abs())
+                    / (1.0 - (1.0 - alpha) * (1.0 - alpha));
+                lags[m.rem_euclid(t as i32) as usize].push((m, a));
+            }
+            (v, share, lags)
+        });
+        let weight = |dx: i32, dy: i32, dt: i32| -> f64 {
+            let sxy = at(&fx, dx) * at(&fy, dy);
+            if let (Some(([vx, vy], share, lags)), Combine::Product) = (&moving, combine) {
+                let along: f64 = lags[dt.rem_euclid(t as i32) as usize]
+                    .iter()
+                    .map(|&(m, a)| a * at(&fx, dx - m * vx) * at(&fy, dy - m * vy))
+                    .sum();
+                return (1.0 - share) * sxy * at(&ft, dt) + share * along;
+            }
             match combine {
                 Combine::Product => sxy * at(&ft, dt),
                 Combine::Separate(wt) => {
@@ -225,8 +249,10 @@ mod tests {
         assert_eq!(b, want);
     }
 
-    /// A moving camera's footprint is the static one sheared by `τ·v` (the overlap of the EMA
-    /// followed along `v`: `ft(τ) · G(d − τ·v)`), mixed in by its share.
+    /// A moving camera's footprint: when a loop of the texture moves the picture by whole
+    /// tiles (`t·v ≡ 0`), every lag `m ≡ τ` carries the same shift and the overlap is the static
+    /// one sheared by `τ·v`; otherwise each wrapped lag keeps its own shift, which moves weight
+    /// but never adds or loses any. Mixed in by its share.
     #[test]
     fn a_moving_footprint_is_the_static_one_sheared() {
         let dims = [16, 16, 8];
@@ -237,32 +263,52 @@ mod tests {
             motion,
             moving,
         };
+        let footprint = |t| Footprint::new(dims, spatial, t, Combine::Product);
         let weights = |t: TemporalFilter| -> std::collections::HashMap<(i32, i32, i32), f64> {
-            let f = Footprint::new(dims, spatial, t, Combine::Product);
-            f.rows
+            footprint(t)
+                .rows
                 .iter()
                 .flat_map(|r| r.entries.iter().map(move |&(dx, w)| ((dx, r.dy, r.dt), w)))
                 .collect()
         };
         let wrap = |d: i32, n: i32| (d + n / 2 - 1).rem_euclid(n) - (n / 2 - 1);
         let still = weights(taa([0, 0], 0.0));
-        let moving = weights(taa([3, -1], 1.0));
+        // 8 frames × (2, −2) px = one tile: a plain shear.
+        let moving = weights(taa([2, -2], 1.0));
         let mut sheared = 0;
         for (&(dx, dy, dt), &w) in &moving {
-            let at = (wrap(dx - 3 * dt, 16), wrap(dy + dt, 16), dt);
+            let at = (wrap(dx - 2 * dt, 16), wrap(dy + 2 * dt, 16), dt);
             let s = still.get(&at).copied().unwrap_or(0.0);
             assert!(
-                (w - s).abs() < 1e-12 * w.abs().max(1e-3),
+                (w - s).abs() < 1e-7 * w.abs().max(1e-3),
                 "{dx} {dy} {dt}: {w} {s}"
             );
             sheared += (dt != 0 && (dx, dy) != (at.0, at.1)) as usize;
         }
         assert!(sheared > 100, "{sheared}");
+        // 8 × (3, −1) is no whole tile: not a plain shear, but the same total weight.
+        let odd = weights(taa([3, -1], 1.0));
+        let differs = odd.iter().any(|(&(dx, dy, dt), &w)| {
+            let at = (wrap(dx - 3 * dt, 16), wrap(dy + dt, 16), dt);
+            (w - still.get(&at).copied().unwrap_or(0.0)).abs() > 1e-6
+        });
+        assert!(differs);
+        let (a, b) = (
+            footprint(taa([0, 0], 0.0)).total,
+            footprint(taa([3, -1], 1.0)).total,
+        );
+        assert!((a - b).abs() < 1e-3 * a, "{a} {b}");
         // Half and half: the average of the two.
-        let mixed = weights(taa([3, -1], 0.5));
-        let (&k, &w) = mixed.iter().find(|(k, _)| k.2 == 2).unwrap();
-        let want = 0.5 * still.get(&k).unwrap_or(&0.0) + 0.5 * moving.get(&k).unwrap_or(&0.0);
-        assert!((w - want).abs() < 1e-12, "{k:?}: {w} {want}");
+        let mixed = weights(taa([2, -2], 0.5));
+        let mut both = 0;
+        for (k, &w) in &mixed {
+            if let (Some(a), Some(b)) = (still.get(k), moving.get(k)) {
+                let want = 0.5 * a + 0.5 * b;
+                assert!((w - want).abs() < 1e-12 * want, "{k:?}: {w} {want}");
+                both += 1;
+            }
+        }
+        assert!(both > 100, "{both}");
     }
 
     #[test]
