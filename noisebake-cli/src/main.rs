@@ -110,7 +110,7 @@ enum Command {
     /// `--features peers`, and the free samplers, at 1–16 spp after four filters); `taa` (masks
     /// under a game's TAA: the history clamped to the 3×3 neighbourhood, dithers at several
     /// coverages and continuous integrands, a static and a moving camera: about 30 s once its
-    /// bakes are cached, about 2 minutes cold).
+    /// bakes are cached, about 5 minutes cold).
     Report {
         /// Which section: fast, stochastic, cnj, all, bench, vector, sampler or taa.
         #[arg(default_value = "all")]
