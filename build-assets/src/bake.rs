@@ -83,13 +83,23 @@ pub fn obtain(
     announce: &mut dyn FnMut(&str),
     progress: crate::generate::Progress,
 ) -> Result<Entry, Error> {
-    if let Some(e) = cache.lookup(spec) {
-        return Ok(e);
+    let entry = match cache.lookup(spec) {
+        Some(e) => e,
+        None => {
+            if let Some(line) = crate::generate::estimate::announcement(spec, threshold) {
+                announce(&line);
+            }
+            cache.get_or_insert_with(spec, || crate::generate(spec, progress))?
+        }
+    };
+    if let Some(open @ 1..) = crate::generate::open_windows_of(spec, &entry.texture) {
+        cache.warnings.push(Warning::OpenWindows {
+            name: spec.name.clone(),
+            open,
+            windows: spec.texels() as u64,
+        });
     }
-    if let Some(line) = crate::generate::estimate::announcement(spec, threshold) {
-        announce(&line);
-    }
-    cache.get_or_insert_with(spec, || crate::generate(spec, progress))
+    Ok(entry)
 }
 
 /// The line that reports a slow generation once it is done.

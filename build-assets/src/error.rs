@@ -132,6 +132,16 @@ pub enum Warning {
         /// Why.
         why: String,
     },
+    /// A `taa` mask whose bake left some 3 × 3 windows without a low or a high value: there
+    /// the history clamp acts on its dithers.
+    OpenWindows {
+        /// The texture.
+        name: String,
+        /// Open windows.
+        open: u64,
+        /// All windows (texels).
+        windows: u64,
+    },
 }
 
 impl fmt::Display for Warning {
@@ -151,6 +161,14 @@ impl fmt::Display for Warning {
             Warning::NotCached { name, why } => write!(
                 f,
                 "texture `{name}` could not be cached ({why}); it is embedded all the same and will be generated again next time"
+            ),
+            Warning::OpenWindows {
+                name,
+                open,
+                windows,
+            } => write!(
+                f,
+                "texture `{name}`: {open} of {windows} TAA windows stay open (no value below the coverage, or none at or above one less it); the history clamp cuts the dither's history there. A higher `coverage` or larger slices close them"
             ),
         }
     }

@@ -882,7 +882,7 @@ fn entries_of_another_canonical_format_are_stale() {
     let dir = tmp("oldformat");
     let text = "kind=fast;dims=[16,16,4];seed=0;format=u8;sample_space=scalar;distribution=Uniform;spatial=Gauss { sigma: 1.3435 };temporal=Ema { alpha: 0.1, beta: 0.1 };combine=Product;iterations=None;start=ign";
     let data = vec![7u8; 16 * 16 * 4];
-    let mut bytes = b"NBAKE\x00\x02\x00".to_vec();
+    let mut bytes = b"NBAKE\x00\x03\x00".to_vec();
     for v in [
         data.len() as u64,
         fnv64(&data),
@@ -912,4 +912,39 @@ fn entries_of_another_canonical_format_are_stale() {
         tidy::check(&build_assets::cache::key(&s), &fresh).1,
         tidy::Status::Valid
     );
+}
+
+/// An entry records the open TAA windows of its texture in the header (bytes 40–47, entry
+/// format 3), `cache list` shows them, and a header that disagrees with the texture is corrupt.
+#[test]
+fn entries_record_open_taa_windows() {
+    use build_assets::cache::open_windows;
+    let s = spec(
+        "kind = \"fast\"\ndims = [16, 16, 2]\ntemporal_filter = { kind = \"taa\", coverage = 0.2 }",
+    );
+    // Every texel mid-grey: no window holds a low or a high value.
+    let t = build_assets::Texture {
+        name: s.name.clone(),
+        dims: s.dims.clone(),
+        format: s.format,
+        data: vec![128; 16 * 16 * 2],
+    };
+    let bytes = encode(&t, &s);
+    assert_eq!(&bytes[..8], b"NBAKE\x00\x03\x00");
+    assert_eq!(open_windows(&bytes), Some(512));
+    assert_eq!(decode(&bytes, &s).unwrap().data, t.data);
+    let mut lied = bytes.clone();
+    lied[40] = 0;
+    lied[41] = 0;
+    assert!(matches!(
+        decode(&lied, &s),
+        Err(Corrupt::OpenWindows {
+            held: 0,
+            counted: 512
+        })
+    ));
+    // Any other kind records 0.
+    let w = spec("kind = \"white\"\ndims = [8, 8]");
+    let wt = generate(&w, &mut |_, _| {});
+    assert_eq!(open_windows(&encode(&wt, &w)), Some(0));
 }

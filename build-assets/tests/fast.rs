@@ -107,7 +107,7 @@ fn bad_fast_specs_name_the_key() {
         error(
             "kind = \"fast\"\ndims = [16, 16, 4]\ntemporal_filter = { kind = \"ema\", alpha = 1.5 }",
         ),
-        &["`temporal_filter.alpha` must be in (0, 1], got 1.5"],
+        &["`temporal_filter.alpha` must be in [0.001, 1], got 1.5"],
     );
     has(
         error(
@@ -120,7 +120,7 @@ fn bad_fast_specs_name_the_key() {
             "kind = \"fast\"\ndims = [16, 16, 4]\ntemporal_filter = { kind = \"taa\", coverage = 0.1 }",
         ),
         &[
-            "`temporal_filter.coverage` must be in [0.12, 0.5]",
+            "`temporal_filter.coverage` must be in [0.15, 0.5]",
             "got 0.1",
         ],
     );
@@ -211,5 +211,90 @@ fn vector_masks_store_unit_vectors_like_the_public_textures() {
         let v: Vec<f64> = px.iter().map(|&b| b as f64 / 255.0 * 2.0 - 1.0).collect();
         let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
         assert!((len - 1.0).abs() < 0.02 && v[2] >= -0.005, "{v:?}");
+    }
+}
+
+/// Edges found by fuzzing the TAA filter and the sampler kind: each message names what is
+/// wrong and where to go, lists every key a filter takes, and never echoes a huge value whole.
+#[test]
+fn fuzzed_taa_and_filter_specs_get_clear_messages() {
+    let has = |msg: String, parts: &[&str]| {
+        for p in parts {
+            assert!(msg.contains(p), "expected {p:?} in:\n{msg}");
+        }
+    };
+    // Every key of the filter's kind, not only the first one read.
+    has(
+        error(
+            "kind = \"fast\"\ndims = [16, 16, 4]\ntemporal_filter = { kind = \"taa\", clamp = 1 }",
+        ),
+        &[
+            "unknown key `clamp`",
+            "`alpha`, `coverage`, `motion`, `moving`",
+        ],
+    );
+    has(
+        error(
+            "kind = \"fast\"\ndims = [16, 16, 4]\ntemporal_filter = { kind = \"ema\", gamma = 1 }",
+        ),
+        &["unknown key `gamma`", "`alpha`, `beta`"],
+    );
+    // `taa` is a filter of `fast`, not a kind that resembles `vac`.
+    let msg = error("kind = \"taa\"\ndims = [16, 16, 4]");
+    has(
+        msg.clone(),
+        &["kind = \"fast\"", "temporal_filter = { kind = \"taa\""],
+    );
+    assert!(!msg.contains("vac"), "{msg}");
+    // A 309-digit number and a 10 000-character word are shortened.
+    let msg = error(
+        "kind = \"fast\"\ndims = [16, 16, 4]\ntemporal_filter = { kind = \"taa\", motion = [1, 0], moving = 1e308 }",
+    );
+    has(msg.clone(), &["got 1e308"]);
+    assert!(msg.len() < 200, "{msg}");
+    let long = "x".repeat(10_000);
+    let msg = error(&format!(
+        "kind = \"fast\"\ndims = [16, 16, 4]\nformat = \"{long}\""
+    ));
+    has(msg.clone(), &["(10000 characters)"]);
+    assert!(msg.len() < 400, "{} characters", msg.len());
+    // An EMA's α has a floor (a history of a thousand frames).
+    has(
+        error(
+            "kind = \"fast\"\ndims = [16, 16, 64]\ntemporal_filter = { kind = \"taa\", alpha = 5e-324 }",
+        ),
+        &["`temporal_filter.alpha` must be in [0.001, 1], got 5e-324"],
+    );
+    // Coverage too low for any arrangement of a slice this small, as u8 stores its ranks.
+    has(
+        error(
+            "kind = \"fast\"\ndims = [4, 3, 2]\nspatial_filter = { kind = \"none\" }\ntemporal_filter = { kind = \"taa\", coverage = 0.15 }",
+        ),
+        &["1 at or above one less it", "needs 2 of each"],
+    );
+    has(
+        error(
+            "kind = \"fast\"\ndims = [32, 32, 8]\ntemporal_filter = { kind = \"taa\", coverage = 0.12 }",
+        ),
+        &["must be in [0.15, 0.5]"],
+    );
+}
+
+/// The TAA masks the fuzzer found with open windows: a bake closes them (the repair swaps
+/// within a slice, so every slice keeps its values).
+#[test]
+fn taa_bakes_close_the_windows_the_optimiser_left_open() {
+    for body in [
+        "kind = \"fast\"\ndims = [5, 3, 2]\nspatial_filter = { kind = \"none\" }\ntemporal_filter = { kind = \"taa\" }",
+        "kind = \"fast\"\ndims = [32, 32, 8]\ntemporal_filter = { kind = \"taa\", coverage = 0.15 }",
+        "kind = \"fast\"\ndims = [16, 16, 64]\ntemporal_filter = { kind = \"taa\", alpha = 0.001 }",
+    ] {
+        let s = noisebake_test_support::bake::spec(body);
+        let t = gen_tex(body);
+        assert_eq!(
+            build_assets::generate::open_windows_of(&s, &t),
+            Some(0),
+            "{body}"
+        );
     }
 }

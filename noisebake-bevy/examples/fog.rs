@@ -191,6 +191,7 @@ pub fn run(opts: &Options) -> Result<Report, String> {
     let started = std::time::Instant::now();
     while started.elapsed() < std::time::Duration::from_secs(120) {
         app.update();
+        finish_gpu_work(&app)?;
         for f in frames.lock().unwrap().drain(..) {
             if f.len() != texels * 4 {
                 return Err(format!(
@@ -260,6 +261,27 @@ pub fn run(opts: &Options) -> Result<Report, String> {
             .map_err(|e| format!("writing {}: {e}", path.display()))?;
     }
     Ok(report)
+}
+
+/// Blocks until the GPU has finished every submission so far, without a time limit.
+///
+/// A headless app has no swapchain to hold it back: each `app.update()` submits a frame and
+/// returns, so on a slow driver (SwiftShader on a busy CPU) submissions pile up faster than they
+/// run. When the app is dropped, wgpu's queue waits for the last of them for at most 6.3 s and
+/// then panics ("We timed out while waiting on the last successful submission to complete!"),
+/// which aborted the process on SwiftShader. Waiting after every update keeps one frame in
+/// flight, delivers each readback in the update after its frame, and leaves the queue idle
+/// whenever the app is dropped.
+pub fn finish_gpu_work(app: &App) -> Result<(), String> {
+    use bevy::render::render_resource::PollType;
+    use bevy::render::renderer::RenderDevice;
+    match app.world().get_resource::<RenderDevice>() {
+        Some(device) => device
+            .poll(PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| format!("waiting for the GPU: {e}")),
+        None => Ok(()),
+    }
 }
 
 /// A 5×5 box filter with toroidal wrap.

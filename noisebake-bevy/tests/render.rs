@@ -210,7 +210,20 @@ fn render_app() -> Option<App> {
         );
     }
     match started {
-        Ok(app) => Some(app),
+        Ok(app) => {
+            // The driver and its version, in the test output (`.ci/run` unpacks SwiftShader
+            // from whatever chromium-common the distribution serves).
+            if let Some(a) = app
+                .world()
+                .get_resource::<bevy::render::renderer::RenderAdapterInfo>()
+            {
+                eprintln!(
+                    "Bevy renders on {} (driver {} {})",
+                    a.0.name, a.0.driver, a.0.driver_info
+                );
+            }
+            Some(app)
+        }
         Err(_) if std::env::var_os("CI").is_some() => {
             panic!("Bevy found no GPU: CI must run the Bevy tests (install mesa-vulkan-drivers)")
         }
@@ -320,6 +333,8 @@ fn library_test() {
             app.world_mut().insert_resource(FrameCount(start));
         }
         app.update();
+        // One frame in flight: a slow driver's queue never grows, and the app drops idle.
+        fog::finish_gpu_work(&app).unwrap();
         for data in frames.lock().unwrap().drain(..) {
             let words: Vec<u32> = data
                 .chunks_exact(4)

@@ -70,6 +70,9 @@ fn ago(t: Option<SystemTime>, now: SystemTime) -> String {
 
 fn status(e: &Listed) -> String {
     match &e.status {
+        Status::Valid if e.open_windows > 0 => {
+            format!("valid, {} TAA windows open", e.open_windows)
+        }
         Status::Valid => "valid".into(),
         Status::Stale => "stale (another generator version)".into(),
         Status::Corrupt(why) => format!("CORRUPT: {why}"),

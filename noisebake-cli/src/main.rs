@@ -10,7 +10,7 @@
 use build_assets::cache::{Locator, Source};
 use build_assets::export::png;
 use build_assets::export::{ktx2, npy, write_atomic};
-use build_assets::spec::{self, Span, Spanned, Table, TextureSpec, Value};
+use build_assets::spec::{self, Shown, Span, Spanned, Table, TextureSpec, Value};
 use build_assets::{Texture, generate};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -397,9 +397,18 @@ fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
     while let Some(flag) = it.next() {
         let key = flag
             .strip_prefix("--")
-            .ok_or_else(|| format!("expected a --key, got `{flag}`"))?
+            .ok_or_else(|| format!("expected a --key, got `{}`", Shown(flag)))?
             .replace('-', "_");
         let raw = it.next().ok_or_else(|| format!("--{key} needs a value"))?;
+        // `--spp --out s.npy`: the next token is a flag, not this one's value (a negative
+        // number starts with one dash, never two).
+        if raw.starts_with("--") {
+            return Err(format!(
+                "{} has no value (the next argument, `{}`, is a flag)",
+                Shown(flag),
+                Shown(raw)
+            ));
+        }
         if key == "out" {
             out = Some(PathBuf::from(raw));
             continue;
@@ -412,7 +421,7 @@ fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
                 .map_err(|_| format!("--dims `{raw}` is not WxH[xT…]"))?;
             Value::Array(dims)
         } else {
-            parse_value(raw)
+            parse_value(flag, raw)?
         };
         table.push((
             Spanned::bare(key),
@@ -425,10 +434,32 @@ fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
     Ok((table, out))
 }
 
-/// A flag value in TOML syntax (`1.9`, `[0, 1]`, `{ axes = [2], sigma = 1.9 }`, `true`); anything
-/// that does not parse as TOML is a bare string (`u16`, `stbn`, `slice`).
-fn parse_value(raw: &str) -> Value {
-    spec::parse_value(raw).unwrap_or_else(|| Value::Str(raw.to_string()))
+/// A flag value in TOML syntax (`1.9`, `[0, 1]`, `{ axes = [2], sigma = 1.9 }`, `true`); a word
+/// that is not TOML is a bare string (`u16`, `stbn`, `slice`). A value that starts as TOML
+/// does (a number, a table, an array, a quoted string) and does not parse is an error naming
+/// TOML's complaint (`duplicate key`, `integer number overflowed`), not a string.
+fn parse_value(flag: &str, raw: &str) -> Result<Value, String> {
+    match spec::parse_value(raw) {
+        Ok(v) => Ok(v),
+        Err(e) if looks_like_toml(raw) => Err(format!(
+            "{} `{}` is not a TOML value: {e}",
+            Shown(flag),
+            Shown(raw)
+        )),
+        Err(_) => Ok(Value::Str(raw.to_string())),
+    }
+}
+
+/// Whether a flag value starts as a TOML number, table, array or quoted string does.
+fn looks_like_toml(raw: &str) -> bool {
+    let t = raw.trim_start();
+    let mut chars = t.chars();
+    match chars.next() {
+        Some('{' | '[' | '"' | '\'') => true,
+        Some(c) if c.is_ascii_digit() => true,
+        Some('+' | '-' | '.') => chars.next().is_some_and(|c| c.is_ascii_digit()),
+        _ => false,
+    }
 }
 
 fn gen_cmd(args: &[String]) -> Result<(), String> {
@@ -459,6 +490,14 @@ fn gen_cmd(args: &[String]) -> Result<(), String> {
         s.canonical(),
         start.elapsed().as_secs_f64()
     );
+    if let Some(open @ 1..) = generate::open_windows_of(&s, &t) {
+        let w = build_assets::Warning::OpenWindows {
+            name: s.name.clone(),
+            open,
+            windows: s.texels() as u64,
+        };
+        eprintln!("warning: {w}");
+    }
     write_outputs(&t, Some(&s), &out, false)
 }
 

@@ -164,6 +164,52 @@ fn gen_rejects_bad_flags_clearly() {
     assert!(!ok && err.contains("--out"), "{err}");
     let (ok, _, err) = noisebake(&["analyze", "/nonexistent.npy"]);
     assert!(!ok && err.contains("/nonexistent.npy"), "{err}");
+    // A flag followed by a flag has no value (not "expected a --key, got `s.npy`").
+    let (ok, _, err) = noisebake(&[
+        "gen", "--kind", "sampler", "--dims", "8x8", "--spp", "--out", "s.npy",
+    ]);
+    assert!(!ok && err.contains("--spp has no value"), "{err}");
+    // A value that starts as TOML and is not TOML says why, instead of "got a string".
+    let (ok, _, err) = noisebake(&[
+        "gen",
+        "--kind",
+        "fast",
+        "--dims",
+        "16x16x4",
+        "--temporal-filter",
+        "{ kind = \"taa\", coverage = 0.2, coverage = 0.3 }",
+        "--out",
+        "/tmp/x.npy",
+    ]);
+    assert!(!ok && err.contains("duplicate key"), "{err}");
+    let (ok, _, err) = noisebake(&[
+        "gen",
+        "--kind",
+        "sampler",
+        "--dims",
+        "8x8",
+        "--spp",
+        "99999999999999999999",
+        "--out",
+        "/tmp/x.npy",
+    ]);
+    assert!(
+        !ok && err.contains("out of range") && !err.contains("string"),
+        "{err}"
+    );
+    // Words stay words.
+    let (ok, _, err) = noisebake(&[
+        "gen",
+        "--kind",
+        "white",
+        "--dims",
+        "8x8",
+        "--format",
+        "u16",
+        "--out",
+        "/tmp/w.npy",
+    ]);
+    assert!(ok, "{err}");
 }
 
 #[test]

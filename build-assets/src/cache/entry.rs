@@ -1,6 +1,9 @@
 //! The entry file format `<key>.nbk`: a 64-byte header (magic `NBAKE\0` and a two-byte format
 //! version, then little-endian u64 data length, FNV-1a 64 of the data, canonical-spec length,
-//! FNV-1a 64 of the canonical spec, zero padding), the texel bytes, then the canonical spec.
+//! FNV-1a 64 of the canonical spec, the open TAA windows, zero padding), the texel bytes, then
+//! the canonical spec. Format 3 added the open windows (bytes 40–47): how many 3 × 3 windows
+//! of a `taa` mask lack a low or a high value ([`crate::generate::open_windows_of`]), 0 for
+//! every other texture — a promise a bake could not keep, recorded beside the texture.
 //! Reads check every header field with checked arithmetic before using any.
 
 use super::key::fnv64;
@@ -9,7 +12,7 @@ use crate::texture::Texture;
 use std::time::Duration;
 
 /// Magic and entry-format version (the last two bytes).
-pub(crate) const MAGIC: &[u8; 8] = b"NBAKE\x00\x02\x00";
+pub(crate) const MAGIC: &[u8; 8] = b"NBAKE\x00\x03\x00";
 /// Bytes before the texture data in an entry file.
 pub const HEADER: usize = 64;
 /// The modification time of every entry: 2001-09-09, long before any build that reads it.
@@ -29,8 +32,15 @@ pub enum Corrupt {
         /// What the header implies (saturated).
         header: u64,
     },
-    /// Padding bytes 40–63 are not zero.
+    /// Padding bytes 48–63 are not zero.
     Padding,
+    /// The header's count of open TAA windows is not the texture's.
+    OpenWindows {
+        /// In the header.
+        held: u64,
+        /// Counted in the texture.
+        counted: u64,
+    },
     /// The data or spec hash does not match.
     Hash,
     /// The entry holds another spec.
@@ -53,6 +63,10 @@ impl std::fmt::Display for Corrupt {
                 write!(f, "truncated or padded: {file} bytes, header says {header}")
             }
             Corrupt::Padding => f.write_str("header padding is not zero"),
+            Corrupt::OpenWindows { held, counted } => write!(
+                f,
+                "header says {held} open TAA windows, the texture has {counted}"
+            ),
             Corrupt::Hash => f.write_str("content hash mismatch"),
             Corrupt::OtherSpec => f.write_str("entry belongs to a different spec"),
             Corrupt::DataLength { held, needed } => {
@@ -71,6 +85,8 @@ pub fn encode(t: &Texture, spec: &TextureSpec) -> Vec<u8> {
     out.extend_from_slice(&fnv64(&t.data).to_le_bytes());
     out.extend_from_slice(&(canon.len() as u64).to_le_bytes());
     out.extend_from_slice(&fnv64(canon.as_bytes()).to_le_bytes());
+    let open = crate::generate::open_windows_of(spec, t).unwrap_or(0);
+    out.extend_from_slice(&open.to_le_bytes());
     out.resize(HEADER, 0);
     out.extend_from_slice(&t.data);
     out.extend_from_slice(canon.as_bytes());
@@ -90,12 +106,25 @@ pub fn decode(bytes: &[u8], spec: &TextureSpec) -> Result<Texture, Corrupt> {
             needed: spec.byte_len() as u64,
         });
     }
-    Ok(Texture {
+    let t = Texture {
         name: spec.name.clone(),
         dims: spec.dims.clone(),
         format: spec.format,
         data: data.to_vec(),
-    })
+    };
+    let held = open_windows(bytes).unwrap_or(0);
+    let counted = crate::generate::open_windows_of(spec, &t).unwrap_or(0);
+    if held != counted {
+        return Err(Corrupt::OpenWindows { held, counted });
+    }
+    Ok(t)
+}
+
+/// The open TAA windows an entry's header records (bytes 40–47), `None` for bytes too short to
+/// hold a header.
+pub fn open_windows(bytes: &[u8]) -> Option<u64> {
+    let b: [u8; 8] = bytes.get(40..48)?.try_into().ok()?;
+    Some(u64::from_le_bytes(b))
 }
 
 /// An entry's texel bytes and canonical spec, after checking its magic, format version,
@@ -114,7 +143,7 @@ pub(crate) fn split(bytes: &[u8]) -> Result<(&[u8], &[u8]), Corrupt> {
         u64::from_le_bytes(b)
     };
     let (len, hash, clen, chash) = (u(8), u(16), u(24), u(32));
-    if bytes[40..HEADER].iter().any(|&b| b != 0) {
+    if bytes[48..HEADER].iter().any(|&b| b != 0) {
         return Err(Corrupt::Padding);
     }
     let total = (HEADER as u64)

@@ -44,7 +44,7 @@ mod key;
 mod location;
 pub mod tidy;
 
-pub use entry::{Corrupt, HEADER, decode, encode};
+pub use entry::{Corrupt, HEADER, decode, encode, open_windows};
 pub(crate) use entry::{ENTRY_MTIME, split};
 pub use key::{fnv64, fnv128, key};
 use location::env_on;

@@ -104,6 +104,9 @@ pub struct Listed {
     pub last_use: Option<SystemTime>,
     /// Valid, stale or corrupt.
     pub status: Status,
+    /// The open TAA windows its header records (0 for every texture but a `taa` mask whose
+    /// bake left some open).
+    pub open_windows: u64,
 }
 
 /// Checks an entry's bytes without its spec: the header, lengths and both hashes, then the key
@@ -168,6 +171,7 @@ pub fn list(dir: &Path) -> io::Result<Vec<Listed>> {
             spec,
             last_use,
             status,
+            open_windows: super::open_windows(&bytes).unwrap_or(0),
         });
     }
     out.sort_by(|a, b| a.key.cmp(&b.key));

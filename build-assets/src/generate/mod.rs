@@ -21,7 +21,7 @@ use vac::{Axis, VacConfig};
 
 /// Version of the generators' output. Bump it whenever any generator's bytes change for an
 /// unchanged spec: the cache key includes it, so stale entries are never served.
-pub const ALGORITHM_VERSION: u32 = 16;
+pub const ALGORITHM_VERSION: u32 = 17;
 
 /// Progress callback: `(done, total)` texels ranked.
 pub type Progress<'a> = &'a mut dyn FnMut(u64, u64);
@@ -57,6 +57,22 @@ pub fn blue2d_ranks(w: usize, h: usize, sigma: f64, density: f64, seed: u64) -> 
         &mut |_, _| {},
     )
     .0
+}
+
+/// Under a `taa` temporal filter, how many 3 × 3 windows of the texture's slices the history
+/// clamp finds without a value below the coverage or one at or above one less it (counted on
+/// the stored values, [`fast::open_windows`]); `None` for every other texture. A bake reports a
+/// count above 0, and the cache entry records it.
+pub fn open_windows_of(spec: &TextureSpec, t: &Texture) -> Option<u64> {
+    let Kind::Fast(params) = &spec.kind else {
+        return None;
+    };
+    let coverage = params.temporal.clamp_coverage()?;
+    let values = fast::decode(params, &t.data, spec.format.scalar);
+    let d = &spec.dims;
+    let dims = [d[0], d[1], d.get(2).copied().unwrap_or(1)];
+    (values.len() == dims.iter().product::<usize>())
+        .then(|| fast::open_windows(&values, dims, coverage))
 }
 
 /// Generates a texture. Pure: the same spec gives the same bytes on any machine and thread count.
@@ -108,7 +124,15 @@ pub fn generate(spec: &TextureSpec, progress: Progress) -> Texture {
         }
         Kind::Fast(params) => {
             let out = crate::generate::fast::generate(params, dims, spec.seed, progress);
-            crate::generate::fast::encode(params, dims, &out.samples, scalar)
+            let mut data = crate::generate::fast::encode(params, dims, &out.samples, scalar);
+            // Windows the optimiser's tiles left open are closed by swaps anywhere in their
+            // slice, on the values as stored.
+            if let Some(coverage) = params.temporal.clamp_coverage() {
+                let mut values = fast::decode(params, &data, scalar);
+                let d = [dims[0], dims[1], dims.get(2).copied().unwrap_or(1)];
+                fast::windows::repair_stored(&mut data, &mut values, d, coverage);
+            }
+            data
         }
         Kind::Sampler(params) => {
             let (keys, _) = sampler::generate(params, dims[0], dims[1], spec.seed, progress);

@@ -42,6 +42,20 @@ impl SpecError {
                 let line = before.matches('\n').count() + 1;
                 let col = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
                 let text = source.lines().nth(line - 1).unwrap_or("");
+                // A long line is shown around the column, not whole.
+                let chars: Vec<char> = text.chars().collect();
+                let text = if chars.len() <= 2 * SHOWN_CHARS {
+                    text.to_string()
+                } else {
+                    let at = before[before.rfind('\n').map_or(0, |i| i + 1)..]
+                        .chars()
+                        .count();
+                    let from = at.saturating_sub(SHOWN_CHARS / 2);
+                    let to = (from + 2 * SHOWN_CHARS).min(chars.len());
+                    let head = if from > 0 { "…" } else { "" };
+                    let tail = if to < chars.len() { "…" } else { "" };
+                    format!("{head}{}{tail}", chars[from..to].iter().collect::<String>())
+                };
                 format!("{file}:{line}:{col}: {}\n    | {text}", self.message)
             }
             _ => format!("{file}: {}", self.message),
@@ -56,6 +70,42 @@ impl fmt::Display for SpecError {
 }
 
 impl std::error::Error for SpecError {}
+
+/// A number as an error message shows it: the shortest decimal that reads back as the same
+/// `f64` when that is short, else scientific notation (`1e308`, never 309 digits).
+#[derive(Clone, Copy, Debug)]
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let plain = self.0.to_string();
+        if plain.len() <= 16 {
+            f.write_str(&plain)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
+/// Longest text an error message quotes from the user's input; longer text is cut.
+pub const SHOWN_CHARS: usize = 40;
+
+/// A user's text as an error message quotes it: whole when short, else its first
+/// [`SHOWN_CHARS`] characters, `…` and its length (a 10 000-character value is not echoed).
+#[derive(Clone, Copy, Debug)]
+pub struct Shown<'a>(pub &'a str);
+
+impl fmt::Display for Shown<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let chars = self.0.chars().count();
+        if chars <= SHOWN_CHARS {
+            f.write_str(self.0)
+        } else {
+            let head: String = self.0.chars().take(SHOWN_CHARS).collect();
+            write!(f, "{head}… ({chars} characters)")
+        }
+    }
+}
 
 /// The closest of `candidates` to `word` (Levenshtein distance ≤ max(2, len/3)), for "did you
 /// mean" hints.

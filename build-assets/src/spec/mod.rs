@@ -13,7 +13,7 @@ pub mod vac;
 mod value;
 
 pub use crate::encoding::{Format, Scalar};
-pub use error::{SpecError, closest};
+pub use error::{Num, Shown, SpecError, closest};
 pub use toml_file::{SpecFile, parse_toml, parse_value, read_cache_dir};
 pub use vac::{Group, VacParams, splat_footprint};
 pub use value::{Span, Spanned, Table, Value};
@@ -242,7 +242,7 @@ impl<'a> Fields<'a> {
             return Err(SpecError::at(
                 key,
                 span,
-                format!("`{key}` must be a number in (0, {max}], got {x}"),
+                format!("`{key}` must be a number in (0, {max}], got {}", Num(x)),
             ));
         }
         Ok(x)
@@ -270,7 +270,7 @@ impl<'a> Fields<'a> {
             return Err(SpecError::at(
                 "initial_density",
                 span,
-                format!("`initial_density` must be in (0, 0.5], got {x}"),
+                format!("`initial_density` must be in (0, 0.5], got {}", Num(x)),
             ));
         }
         Ok(x)
@@ -294,7 +294,10 @@ impl<'a> Fields<'a> {
             Some((other, span)) => Err(SpecError::at(
                 "histogram",
                 span,
-                format!("`histogram` must be \"volume\" or \"slice\", got \"{other}\""),
+                format!(
+                    "`histogram` must be \"volume\" or \"slice\", got \"{}\"",
+                    Shown(other)
+                ),
             )),
         }
     }
@@ -320,7 +323,7 @@ impl<'a> Fields<'a> {
                     k.span,
                     format!(
                         "texture `{texture}`: unknown key `{}`{hint}; valid keys here: {}",
-                        k.value,
+                        Shown(&k.value),
                         allowed.join(", ")
                     ),
                 ));
@@ -348,7 +351,7 @@ fn number(key: &str, v: &Spanned<Value>) -> Result<f64, SpecError> {
         return Err(SpecError::at(
             key,
             v.span,
-            format!("`{key}` must be finite, got {x}"),
+            format!("`{key}` must be finite, got {}", Num(x)),
         ));
     }
     Ok(x)
@@ -398,7 +401,10 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
             SpecError::at(
                 "format",
                 span,
-                format!("`format` must be u8, u16, f32 or a vector form like u8x3, got \"{s}\""),
+                format!(
+                    "`format` must be u8, u16, f32 or a vector form like u8x3, got \"{}\"",
+                    Shown(s)
+                ),
             )
         })?,
     };
@@ -450,12 +456,17 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
         other => {
             let msg = if PLANNED_KINDS.contains(&other) {
                 format!("kind `{other}` is not available in this version of noisebake yet")
+            } else if other == "taa" {
+                // A TAA mask is a FAST mask made for TAA's history: say where that lives rather
+                // than suggesting the nearest spelling (`vac`).
+                "`taa` is a temporal filter, not a kind: a mask for TAA is `kind = \"fast\"` with `temporal_filter = { kind = \"taa\", coverage = 0.25 }` (also `alpha`, `motion`, `moving`)".to_string()
             } else {
                 let hint = closest(other, KINDS)
                     .map(|c| format!(" (did you mean `{c}`?)"))
                     .unwrap_or_default();
                 format!(
-                    "unknown kind `{other}`{hint}; valid kinds: {}",
+                    "unknown kind `{}`{hint}; valid kinds: {}",
+                    Shown(other),
                     KINDS.join(", ")
                 )
             };

@@ -88,14 +88,15 @@ fn convert_table(t: &DeTable<'_>) -> Result<Table, SpecError> {
 }
 
 /// Parses one TOML value (`1.9`, `[0, 1]`, `{ axes = [2], sigma = 1.9 }`, `"u16"`), as the
-/// CLI's `--key value` flags take them; `None` when `text` is not a TOML value.
-pub fn parse_value(text: &str) -> Option<Value> {
+/// CLI's `--key value` flags take them; the TOML error (a duplicate key, an integer out of
+/// range, an unclosed table) when `text` is not one TOML value.
+pub fn parse_value(text: &str) -> Result<Value, String> {
     let line = format!("v = {text}");
-    let doc = DeTable::parse(&line).ok()?;
-    let top = convert_table(doc.get_ref()).ok()?;
+    let doc = DeTable::parse(&line).map_err(|e| e.message().to_string())?;
+    let top = convert_table(doc.get_ref()).map_err(|e| e.message)?;
     match top.as_slice() {
-        [(k, v)] if k.value == "v" => Some(v.value.clone()),
-        _ => None,
+        [(k, v)] if k.value == "v" => Ok(v.value.clone()),
+        _ => Err("not one value".to_string()),
     }
 }
 

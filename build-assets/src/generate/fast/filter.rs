@@ -8,14 +8,30 @@
 use crate::spec::fast::{Combine, Filter, TemporalFilter};
 
 /// The circular autocorrelation `F[d] = Σ_x f[x] f[x + d]` of `taps` wrapped onto a ring of `n`.
+///
+/// Only the ring's non-zero entries are visited, pair by pair, in the order of `x` for every
+/// `d` (so each sum adds the same terms in the same order as the dense `O(n²)` form, skipping
+/// zeros): `O(s²)` for `s` non-zero entries, which keeps a long texture's temporal overlap
+/// (65 536 frames under an EMA whose taps underflow to zero after a few thousand) from costing
+/// `n²`.
 pub fn ring_autocorrelation(taps: &[f64], n: usize) -> Vec<f64> {
     let mut ring = vec![0.0; n];
     for (i, &t) in taps.iter().enumerate() {
         ring[i % n] += t;
     }
-    (0..n)
-        .map(|d| (0..n).map(|x| ring[x] * ring[(x + d) % n]).sum())
-        .collect()
+    let support: Vec<(usize, f64)> = ring
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| **v != 0.0)
+        .map(|(i, &v)| (i, v))
+        .collect();
+    let mut out = vec![0.0; n];
+    for &(x, a) in &support {
+        for &(y, b) in &support {
+            out[(y + n - x) % n] += a * b;
+        }
+    }
+    out
 }
 
 impl TemporalFilter {
@@ -33,38 +49,64 @@ impl TemporalFilter {
                 ring_autocorrelation(&Filter::Gauss { sigma }.taps(), n)
             }
             TemporalFilter::Taa { .. } => self.weights().overlap(n),
-            TemporalFilter::Ema { alpha, beta: 0.0 } => {
-                // No history rejection: the EMA's steady state over a texture that loops every
-                // `n` frames. Its taps α(1 − α)^l for every age l fold onto the ring (frame
-                // t − l reads slice (t − l) mod n), a geometric sum per slice.
-                let fold = 1.0 / (1.0 - (1.0 - alpha).powi(n as i32));
-                let taps: Vec<f64> = (0..n)
-                    .map(|l| alpha * (1.0 - alpha).powi(l as i32) * fold)
-                    .collect();
-                ring_autocorrelation(&taps, n)
-            }
-            TemporalFilter::Ema { alpha, beta } => {
-                let mut total = vec![0.0; n];
-                let mut weight = beta;
-                for m in 1..=n {
-                    let taps: Vec<f64> = (0..m)
-                        .map(|l| {
-                            if l + 1 < m {
-                                alpha * (1.0 - alpha).powi(l as i32)
-                            } else {
-                                (1.0 - alpha).powi(l as i32)
-                            }
-                        })
-                        .collect();
-                    for (t, a) in total.iter_mut().zip(ring_autocorrelation(&taps, n)) {
-                        *t += weight * a;
-                    }
-                    weight *= 1.0 - beta;
-                }
-                total
-            }
+            TemporalFilter::Ema { alpha, beta: 0.0 } => ema_folded(alpha, n),
+            TemporalFilter::Ema { alpha, beta } => ema_rejected(alpha, beta, n),
         }
     }
+}
+
+/// The plain EMA's overlap on a ring of `n` frames, in closed form (`O(n)`).
+///
+/// No history rejection: the EMA's steady state over a texture that loops every `n` frames.
+/// Its taps `α r^l` (`r = 1 − α`) for every age `l` fold onto the ring (frame `t − l` reads
+/// slice `(t − l) mod n`): slice `l` holds `α r^l / (1 − r^n)`. The ring's autocorrelation at
+/// `d` is the taps' linear autocorrelation at lags `d` and `n − d`, `L(k) = c r^k (1 −
+/// r^(2(n − k)))` with `c = α² / ((1 − r^n)² (1 − r²))`, a geometric sum.
+fn ema_folded(alpha: f64, n: usize) -> Vec<f64> {
+    let r = 1.0 - alpha;
+    let fold = 1.0 / (1.0 - r.powi(n as i32));
+    let c = alpha * alpha * fold * fold / (1.0 - r * r);
+    let lin = |k: usize| c * r.powi(k as i32) * (1.0 - r.powi(2 * (n - k) as i32));
+    (0..n)
+        .map(|d| if d == 0 { lin(0) } else { lin(d) + lin(n - d) })
+        .collect()
+}
+
+/// The EMA's overlap with history rejection (FAST eq. 17) on a ring of `n` frames, in closed
+/// form (`O(n)`).
+///
+/// Eq. (17) averages, over the history length `m = 1 … n` with weight `w_m = β q^(m−1)` (`q =
+/// 1 − β`), the autocorrelation of the truncated filter `f^(m)` of eq. (16): taps `α r^l` for
+/// `l < m − 1` and `r^(m−1)` on the oldest frame (`r = 1 − α`). Swapping the sums, the pair of
+/// ages `x ≤ y` carries `G(x, y) = r^(x+y) (α² W(y + 2) + c w_(y+1))` with `c = α` for `x < y`
+/// and 1 for `x = y`, where `W(k) = Σ_(m ≥ k) w_m = q^(k−1) − q^n` is the weight of the histories
+/// longer than `y + 1`. The sum of `G` over pairs `d` apart, `S(d)`, is three geometric sums in
+/// `x`; the ring's autocorrelation is `S(d) + S(n − d)` (no history is longer than the ring,
+/// so nothing folds). The scale does not change the optimum.
+fn ema_rejected(alpha: f64, beta: f64, n: usize) -> Vec<f64> {
+    let (r, q) = (1.0 - alpha, 1.0 - beta);
+    let pow = |b: f64, e: usize| b.powi(e as i32);
+    let geometric = |b: f64, len: usize| {
+        // Σ_{x < len} b^x, for b in [0, 1).
+        (1.0 - pow(b, len)) / (1.0 - b)
+    };
+    let qn = pow(q, n);
+    // S(k) over the pairs (x, x + k), x = 0 … n − 1 − k.
+    let lag = |k: usize| -> f64 {
+        let m = n - k; // pairs
+        // Σ_{x ≤ n−2−k} r^(2x+k) α² (q^(x+k+1) − q^n): histories longer than y + 1 = x + k + 1.
+        let longer = alpha
+            * alpha
+            * pow(r, k)
+            * (pow(q, k + 1) * geometric(r * r * q, m - 1) - qn * geometric(r * r, m - 1));
+        // Σ_{x ≤ n−1−k} r^(2x+k) c β q^(x+k): the history that ends at y.
+        let c = if k == 0 { 1.0 } else { alpha };
+        let ending = c * beta * pow(r, k) * pow(q, k) * geometric(r * r * q, m);
+        longer + ending
+    };
+    (0..n)
+        .map(|d| if d == 0 { lag(0) } else { lag(d) + lag(n - d) })
+        .collect()
 }
 
 /// Lags of a moving camera's EMA whose weight falls below this fraction of the newest frame's
@@ -319,6 +361,73 @@ mod tests {
             assert!((f[32 - d.max(1)] - f[d.max(1)]).abs() < 1e-15);
         }
         assert_eq!(f[5], 0.0);
+    }
+
+    /// The closed forms of the EMA's overlap against the dense sums they replace (the dense
+    /// ring autocorrelation of the folded taps for β = 0, eq. 17's sum over history lengths
+    /// for β > 0), at several ring sizes and weights.
+    #[test]
+    fn ema_closed_forms_match_the_dense_sums() {
+        let dense = |taps: &[f64], n: usize| -> Vec<f64> {
+            (0..n)
+                .map(|d| (0..n).map(|x| taps[x] * taps[(x + d) % n]).sum())
+                .collect()
+        };
+        for (alpha, n) in [
+            (0.1f64, 1usize),
+            (0.1, 2),
+            (0.1, 64),
+            (0.5, 7),
+            (1.0, 5),
+            (0.001, 300),
+        ] {
+            let fold = 1.0 / (1.0 - (1.0 - alpha).powi(n as i32));
+            let taps: Vec<f64> = (0..n)
+                .map(|l| alpha * (1.0f64 - alpha).powi(l as i32) * fold)
+                .collect();
+            let want = dense(&taps, n);
+            let got = TemporalFilter::Ema { alpha, beta: 0.0 }.overlap(n);
+            for d in 0..n {
+                assert!(
+                    (got[d] - want[d]).abs() <= 1e-12 * want[0],
+                    "α {alpha} n {n} d {d}: {} vs {}",
+                    got[d],
+                    want[d]
+                );
+            }
+            for beta in [0.05, 0.5, 1.0] {
+                let mut want = vec![0.0; n];
+                for m in 1..=n {
+                    let taps: Vec<f64> = (0..n)
+                        .map(|l| match l + 1 {
+                            k if k < m => alpha * (1.0f64 - alpha).powi(l as i32),
+                            k if k == m => (1.0f64 - alpha).powi(l as i32),
+                            _ => 0.0,
+                        })
+                        .collect();
+                    let w = beta * (1.0f64 - beta).powi(m as i32 - 1);
+                    for (t, a) in want.iter_mut().zip(dense(&taps, n)) {
+                        *t += w * a;
+                    }
+                }
+                let got = TemporalFilter::Ema { alpha, beta }.overlap(n);
+                for d in 0..n {
+                    assert!(
+                        (got[d] - want[d]).abs() <= 1e-12 * want[0],
+                        "α {alpha} β {beta} n {n} d {d}: {} vs {}",
+                        got[d],
+                        want[d]
+                    );
+                }
+            }
+        }
+        // The sparse ring autocorrelation is the dense one, bit for bit.
+        let taps = Filter::Gauss { sigma: 1.3 }.taps();
+        let mut ring = vec![0.0; 40];
+        for (i, t) in taps.iter().enumerate() {
+            ring[i % 40] += t;
+        }
+        assert_eq!(ring_autocorrelation(&taps, 40), dense(&ring, 40));
     }
 
     #[test]

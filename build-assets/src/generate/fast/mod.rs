@@ -36,12 +36,14 @@ pub mod optimize;
 #[cfg_attr(docsrs, doc(cfg(feature = "research")))]
 pub mod paper;
 pub mod space;
+pub mod windows;
 
 pub use crate::spec::fast::{
     Combine, Distribution, FastParams, Filter, SampleSpace, Start, TemporalFilter,
 };
 pub use filter::Footprint;
 pub use optimize::{CurvePoint, Outcome};
+pub use windows::open_windows;
 
 use crate::encoding::{Scalar, encode_ranks, encode_unit};
 use crate::generate::rng::{SplitMix64, derive_seed};
@@ -153,31 +155,6 @@ pub fn ign_slice(w: usize, h: usize, frame: usize) -> Vec<f64> {
             })
         })
         .collect()
-}
-
-/// Under TAA ([`TemporalFilter::Taa`]): how many 3 × 3 windows (wrapping) of the scalar
-/// `values` (`w × h × t`, x fastest) lack a value below `coverage` or one at or above
-/// `1 − coverage`, over all slices — the windows where the history clamp acts on a dither at
-/// some coverage in `[coverage, 1 − coverage]`. A `taa` bake drives this to 0 when it can.
-pub fn open_windows(values: &[f64], [w, h, t]: [usize; 3], coverage: f64) -> u64 {
-    let mut open = 0;
-    for f in 0..t {
-        let slice = &values[f * w * h..][..w * h];
-        for y in 0..h {
-            for x in 0..w {
-                let (mut low, mut high) = (false, false);
-                for dy in [h - 1, 0, 1] {
-                    for dx in [w - 1, 0, 1] {
-                        let v = slice[((y + dy) % h) * w + (x + dx) % w];
-                        low |= v < coverage;
-                        high |= v >= 1.0 - coverage;
-                    }
-                }
-                open += u64::from(!(low && high));
-            }
-        }
-    }
-    open
 }
 
 /// The loss of eq. (7) of `samples` for `params` on `dims`.
