@@ -69,7 +69,10 @@ fn construct(spec: &TextureSpec, bytes: &str, krate: &str) -> String {
     let mask_ctor = mask.split('<').next().unwrap_or(&mask);
     let mask = format!("{mask_ctor}::new({bytes})");
     match &spec.kind {
-        Kind::Sampler(_) => format!("{krate}::SamplerTile::new({mask})"),
+        Kind::Sampler(p) => format!(
+            "{krate}::SamplerTile::new({mask}, {:#010b})",
+            p.sobol_pairs()
+        ),
         _ => mask,
     }
 }

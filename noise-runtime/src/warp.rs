@@ -31,6 +31,30 @@ pub fn disk_concentric(u: f32, v: f32) -> [f32; 2] {
     [r * c, r * s]
 }
 
+/// Uniform point in the unit disk by the polar map: `r = √u`, `φ = 2πv` (Pharr, Jakob and
+/// Humphreys, PBRT 4th ed., §A.5.1). `u` is the radius squared and `v` the angle in turns, so a
+/// sampler's strata in `u` are rings of equal area and in `v` sectors, and `v` wraps: a
+/// rank-1 lattice or a toroidal shift of `(u, v)` keeps its structure on the disk. The map
+/// of `sample_space = "disk"` for sampler tiles.
+#[must_use]
+#[inline]
+pub fn disk_polar(u: f32, v: f32) -> [f32; 2] {
+    let r = sqrt(unit(u));
+    let (s, c) = sincos_turns(unit(v));
+    [r * c, r * s]
+}
+
+/// Cosine-weighted direction on the upper unit hemisphere (density `cos θ / π`) by the polar
+/// map lifted by Malley's method: `r = √u`, `φ = 2πv`, `z = √(1 − u)`. The map of
+/// `sample_space = "cosine_hemisphere"` for sampler tiles (ambient occlusion, a diffuse
+/// bounce), whose lattice shifts wrap in `v` as the azimuth does.
+#[must_use]
+#[inline]
+pub fn cosine_hemisphere_polar(u: f32, v: f32) -> [f32; 3] {
+    let [x, y] = disk_polar(u, v);
+    [x, y, sqrt(1.0 - unit(u))]
+}
+
 /// Uniform direction on the unit sphere: `z = 1 − 2u`, azimuth `2πv` (Archimedes' hat-box).
 #[must_use]
 #[inline]

@@ -401,28 +401,28 @@ fn samplers_are_pinned() {
             0x3f4f2f97, 0x3c8d0da0,
         ],
     );
-    // A baked tile's points: Sobol indices of blocks and the pairs' scrambled values.
-    let keys = [
-        (0u32, 0u32, 0u32, 1u32),
-        (7, 3, 5, 8),
-        (0xffff, 2, 2, 3),
-        (40_000, 9, 63, 64),
+    // A baked tile's points: the R_D sequence's point n in dimension d shifted by a key
+    // (lattice pairs), or Sobol's digitally shifted (pairs flagged in the last field; the
+    // Sobol values checked against a bit-by-bit computation outside the crate).
+    let points = [
+        (0u32, 0u32, 4u32, 0u16, 0u8),
+        (7, 3, 4, 0x1234, 0),
+        (u32::MAX, 1, 2, 0xffff, 0),
+        (40_000, 7, 8, 9, 0),
+        (5, 0, 4, 0x8001, 0b01),
+        (0x0123_4567, 3, 4, 0x00ff, 0b10),
+        (u32::MAX, 1, 2, 0xffff, 0b01),
+        (40_000, 6, 8, 9, 0b1000),
     ];
     check(
         "sampler tile",
-        keys.iter()
-            .flat_map(|&(key, frame, i, spp)| {
-                let index = sampler::tile_index(key, frame, i, spp);
-                [
-                    index,
-                    sampler::tile_value(index, 0, 0),
-                    sampler::tile_value(index, 3, 1),
-                ]
-            })
+        points
+            .iter()
+            .map(|&(n, d, dims, key, sobol)| sampler::tile_point(n, d, dims, key, sobol))
             .collect(),
         &[
-            0x00000000, 0x7670e3ea, 0x2934cfc7, 0x00000025, 0x93f953f6, 0x8bc940cc, 0x0003fff6,
-            0x12268c3e, 0x1c1d4c85, 0x0027127f, 0xfa968efa, 0xe47af949,
+            0x00000000, 0xd75e91a3, 0x6e1df25b, 0xfe827940, 0x20010000, 0x00f50c80, 0xffff0001,
+            0x02300000,
         ],
     );
 }

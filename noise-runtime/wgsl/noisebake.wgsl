@@ -410,32 +410,96 @@ fn nb_sobol_owen(p: vec2<i32>, frame: u32, seed: u32) -> vec4<f32> {
     ));
 }
 
+// The R_D sequence's step in dimension d of a dims-dimensional tile, floor(2^32 / phi_D^(d+1))
+// (TILE_STEPS: rows 1 to 8 one after another).
+fn nb_tile_step(dims: u32, d: u32) -> u32 {
+    var steps = array<u32, 36>(
+        0x9e3779b9u, 0xc13fa9a9u, 0x91e10da5u, 0xd1b54a32u, 0xabc98388u, 0x8cb92ba7u,
+        0xdb4f0b91u, 0xbbe05633u, 0xa0f2ec75u, 0x89e18285u, 0xe19b01aau, 0xc6d1d6c8u,
+        0xaf36d01eu, 0x9a69443fu, 0x881403b9u, 0xe60e2b72u, 0xcebd76d9u, 0xb9c9aa3au,
+        0xa6f5777fu, 0x9609c71eu, 0x86d516e5u, 0xe95e1dd1u, 0xd4bc74e1u, 0xc1edbc5bu,
+        0xb0c8ac50u, 0xa127a31cu, 0x92e852c8u, 0x85eb75c3u, 0xebedeed9u, 0xd96eb1a8u,
+        0xc862b36du, 0xb8acd90cu, 0xaa324f90u, 0x9cda5e69u, 0x908e3d2cu, 0x8538ecb5u,
+    );
+    let row = clamp(dims, 1u, 8u);
+    return steps[row * (row - 1u) / 2u + d % row];
+}
+
+// Dimension `axis` (0 or 1) of point n of the Sobol sequence as a 32-bit fraction
+// (sampler::sobol2): van der Corput (n bit-reversed), then the Pascal matrix's image of n
+// (direction numbers v_0 = 2^31, v_k = v_(k-1) ^ (v_(k-1) >> 1)), bit by bit.
+fn nb_sobol2(n: u32, axis: u32) -> u32 {
+    if ((axis & 1u) == 0u) {
+        return reverseBits(n);
+    }
+    var x = 0u;
+    var v = 0x80000000u;
+    var m = n;
+    while (m != 0u) {
+        if ((m & 1u) != 0u) {
+            x = x ^ v;
+        }
+        m = m >> 1u;
+        v = v ^ (v >> 1u);
+    }
+    return x;
+}
+
+// Dimension d of sample n of a pixel whose key in that dimension is `key`, in a dims-dimensional
+// tile whose pairs flagged in `sobol_pairs` (bit p for dimensions 2p, 2p + 1) run Sobol
+// (sampler::tile_point): n * step + key * 2^16 wrapping for a lattice dimension,
+// sobol2(n, d % 2) ^ key * 2^16 for a Sobol one.
+fn nb_tile_point(n: u32, d: u32, dims: u32, key: u32, sobol_pairs: u32) -> u32 {
+    let dd = d % clamp(dims, 1u, 8u);
+    if (((sobol_pairs >> (dd / 2u)) & 1u) != 0u) {
+        return nb_sobol2(n, dd) ^ (key << 16u);
+    }
+    return n * nb_tile_step(dims, dd) + (key << 16u);
+}
+
 // Dimension d of sample i of pixel p in frame `frame` of a baked sampler tile, as a 32-bit
 // fraction (SamplerTile::sample_bits): `keys` is the tile's r16uint key mask (one layer per
-// dimension), `spp` the samples per frame it was baked for. A pair of dimensions reads its key
-// (two layers), and the sample is point i of block key ^ frame of the pair's Owen-scrambled
-// Sobol sequence, blocks being spp rounded up to a power of two long (tile_index, tile_value).
-fn nb_sampler_tile_bits(keys: texture_2d_array<u32>, p: vec2<i32>, frame: u32, i: u32, d: u32, spp: u32) -> u32 {
+// dimension), `spp` the samples per frame it was baked for, `sobol_pairs` its
+// SamplerTile::sobol_pairs. The sample is point n = frame * spp + i of the pair's sequence,
+// shifted by the pixel's key (nb_tile_point).
+fn nb_sampler_tile_bits(keys: texture_2d_array<u32>, p: vec2<i32>, frame: u32, i: u32, d: u32, spp: u32, sobol_pairs: u32) -> u32 {
     let dims = textureNumLayers(keys);
     let size = textureDimensions(keys);
     let dd = d % dims;
-    let first = dd & ~1u;
     let c = vec2<u32>(nb_wrap(p.x, size.x), nb_wrap(p.y, size.y));
-    var key = textureLoad(keys, c, first, 0).x;
-    if (first + 1u < dims) {
-        key |= textureLoad(keys, c, first + 1u, 0).x << 16u;
-    }
-    let shift = 32u - countLeadingZeros(max(spp, 1u) - 1u);
-    let base = select(0u, (key ^ frame) << min(shift, 31u), shift < 32u);
-    let index = base | (i % spp);
-    let axis = dd & 1u;
-    let seed = nb_seed_combine(nb_seed_combine(0x53485546u, dd >> 1u), axis);
-    return nb_owen(nb_sobol4(index)[axis], seed);
+    let key = textureLoad(keys, c, dd, 0).x;
+    let n = frame * max(spp, 1u) + i % max(spp, 1u);
+    return nb_tile_point(n, dd, dims, key, sobol_pairs);
 }
 
 // The same in [0, 1) (SamplerTile::sample).
-fn nb_sampler_tile(keys: texture_2d_array<u32>, p: vec2<i32>, frame: u32, i: u32, d: u32, spp: u32) -> f32 {
-    return nb_to_unit(nb_sampler_tile_bits(keys, p, frame, i, d, spp));
+fn nb_sampler_tile(keys: texture_2d_array<u32>, p: vec2<i32>, frame: u32, i: u32, d: u32, spp: u32, sobol_pairs: u32) -> f32 {
+    return nb_to_unit(nb_sampler_tile_bits(keys, p, frame, i, d, spp, sobol_pairs));
+}
+
+// Pair `pair` (dimensions 2 pair, 2 pair + 1) of sample i as a cosine-weighted direction about
+// +z by the polar map r = sqrt(u), phi = 2 pi v, z = sqrt(1 - u)
+// (SamplerTile::cosine_hemisphere, warp::cosine_hemisphere_polar). A float path: within the
+// documented tolerance of the CPU's (noise_runtime::shaders).
+fn nb_sampler_tile_cosine_hemisphere(keys: texture_2d_array<u32>, p: vec2<i32>, frame: u32, i: u32, pair: u32, spp: u32, sobol_pairs: u32) -> vec3<f32> {
+    let u = nb_sampler_tile(keys, p, frame, i, 2u * pair, spp, sobol_pairs);
+    let v = nb_sampler_tile(keys, p, frame, i, 2u * pair + 1u, spp, sobol_pairs);
+    return nb_cosine_hemisphere_polar(u, v);
+}
+
+// The polar map of the unit square to the unit disk: r = sqrt(u), phi = 2 pi v
+// (warp::disk_polar).
+fn nb_disk_polar(u: f32, v: f32) -> vec2<f32> {
+    let r = sqrt(clamp(u, 0.0, 1.0));
+    let phi = 6.283185307179586 * clamp(v, 0.0, 1.0);
+    return vec2<f32>(r * cos(phi), r * sin(phi));
+}
+
+// Cosine-weighted direction about +z: the polar disk point lifted, z = sqrt(1 - u)
+// (warp::cosine_hemisphere_polar).
+fn nb_cosine_hemisphere_polar(u: f32, v: f32) -> vec3<f32> {
+    let d = nb_disk_polar(u, v);
+    return vec3<f32>(d, sqrt(1.0 - clamp(u, 0.0, 1.0)));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -46,7 +46,7 @@ baked_mask!(Mask3, W, H, D);
 baked_mask!(Mask4, W, H, D, E);
 
 /// A sampler tile is its key mask on the GPU (`R16Uint`, one layer per sample dimension), as
-/// WGSL's `nb_sampler_tile(keys, pixel, frame, i, d, spp)` reads it.
+/// WGSL's `nb_sampler_tile(keys, pixel, frame, i, d, spp, sobol_pairs)` reads it.
 impl<const W: u32, const H: u32, const SPP: u32, const D: u32> BakedMask
     for SamplerTile<W, H, SPP, D>
 {

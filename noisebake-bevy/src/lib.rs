@@ -39,7 +39,7 @@
 //!   with no file: a `D2Array` texture in the mask's format (`r8unorm`, `r16uint`, `r32float`,
 //!   2 and 4 channels; 3 padded to 4), one layer per frame, sampled nearest. A sampler tile
 //!   (`SamplerTile`) becomes its key mask, `r16uint` with a layer per sample dimension, which
-//!   WGSL's `nb_sampler_tile(keys, pixel, frame, i, d, spp)` reads.
+//!   WGSL's `nb_sampler_tile(keys, pixel, frame, i, d, spp, sobol_pairs)` reads.
 //! - **Masks as KTX2 files.** `Bake::ktx2_dir` writes the same textures as KTX2.
 //!   [`NoiseMasks::load`] loads one through Bevy's asset server and `ktx2` loader, with the
 //!   settings a mask needs (linear, nearest) and a `D2Array` view also for one layer (see

@@ -112,6 +112,7 @@ fn bevys_ktx2_loader_reads_every_format_the_bake_writes() {
             |b| {
                 Box::new(SamplerTile::<16, 16, 4, 4>::new(
                     Mask3::<u16, 16, 16, 4>::new(b),
+                    0b11,
                 ))
             },
             F::R16Uint,

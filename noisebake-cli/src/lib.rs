@@ -9,5 +9,7 @@ pub mod analysis;
 pub mod cache;
 pub mod export;
 pub mod points;
+#[cfg(feature = "render")]
+pub mod render;
 pub mod report;
 pub mod zsobol;

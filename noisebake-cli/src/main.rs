@@ -112,7 +112,7 @@ enum Command {
     /// coverages and continuous integrands, a static and a moving camera: about 30 s once its
     /// bakes are cached, about 5 minutes cold).
     Report {
-        /// Which section: fast, stochastic, cnj, all, bench, vector, sampler or taa.
+        /// Which section: fast, stochastic, cnj, all, bench, vector, sampler, taa or render.
         #[arg(default_value = "all")]
         section: String,
         /// Write the stochastic-noise rows as a JSON list (`{"noise", "variant", "ns_per_eval",
@@ -134,6 +134,10 @@ enum Command {
         /// noisier timings, same error columns).
         #[arg(long)]
         quick: bool,
+        /// For `render`: a Wavefront `.obj` to trace instead of the built-in room (the camera
+        /// and light are placed around its bounds).
+        #[arg(long)]
+        scene: Option<PathBuf>,
     },
 }
 
@@ -242,7 +246,16 @@ fn main() -> ExitCode {
             full,
             paper,
             quick,
-        } => report(&section, json.as_deref(), &out, [full, paper], quick),
+            scene,
+        } => {
+            if section == "render" {
+                render_report(&out, scene.as_deref())
+            } else if scene.is_some() {
+                Err("--scene is for `report render`".to_string())
+            } else {
+                report(&section, json.as_deref(), &out, [full, paper], quick)
+            }
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -296,6 +309,7 @@ fn write_outputs(
     spec: Option<&TextureSpec>,
     out: &Path,
     with_png: bool,
+    npy_frames: Option<u32>,
 ) -> Result<(), String> {
     let ext = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     match ext {
@@ -303,7 +317,13 @@ fn write_outputs(
         // checks; .bin and .ktx2 hold the baked keys.
         "npy" => match spec.map(|s| &s.kind) {
             Some(spec::Kind::Sampler(p)) => {
-                let samples = build_assets::generate::sampler::samples(t, p);
+                // `--npy-frames N`: frames 0 … N − 1 as a leading axis; without it, frame 0
+                // alone and no frame axis.
+                let mut samples =
+                    build_assets::generate::sampler::samples(t, p, npy_frames.unwrap_or(1));
+                if npy_frames.is_none() {
+                    samples.dims.pop();
+                }
                 write_atomic(out, &npy::to_npy(&samples))
                     .map_err(|e| format!("{}: {e}", out.display()))?
             }
@@ -370,9 +390,21 @@ fn bake(
             eprintln!("warning: {w}");
         }
         let t = entry.texture;
-        write_outputs(&t, Some(s), &out.join(format!("{}.npy", s.name)), with_png)?;
+        write_outputs(
+            &t,
+            Some(s),
+            &out.join(format!("{}.npy", s.name)),
+            with_png,
+            None,
+        )?;
         if with_ktx2 {
-            write_outputs(&t, Some(s), &out.join(format!("{}.ktx2", s.name)), false)?;
+            write_outputs(
+                &t,
+                Some(s),
+                &out.join(format!("{}.ktx2", s.name)),
+                false,
+                None,
+            )?;
         }
         let how = match entry.source {
             Source::Hit => "cached".to_string(),
@@ -390,9 +422,20 @@ fn bake(
 }
 
 /// Parses `--key value` pairs into a spec table (dashes in keys become underscores).
-fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
+/// What `gen` writes beside the spec: the output file and, for a sampler tile's `.npy`, how
+/// many frames of samples (`--npy-frames`, an export option: it never changes the bake).
+struct Export {
+    out: Option<PathBuf>,
+    npy_frames: Option<u32>,
+}
+
+/// Most frames `--npy-frames` writes.
+const MAX_NPY_FRAMES: u32 = 4096;
+
+fn flags_to_table(args: &[String]) -> Result<(Table, Export), String> {
     let mut table: Table = Vec::new();
     let mut out = None;
+    let mut npy_frames = None;
     let mut it = args.iter();
     while let Some(flag) = it.next() {
         let key = flag
@@ -413,6 +456,20 @@ fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
             out = Some(PathBuf::from(raw));
             continue;
         }
+        if key == "npy_frames" {
+            npy_frames = Some(
+                raw.parse::<u32>()
+                    .ok()
+                    .filter(|n| (1..=MAX_NPY_FRAMES).contains(n))
+                    .ok_or_else(|| {
+                        format!(
+                            "--npy-frames `{}` must be a count of frames from 1 to {MAX_NPY_FRAMES}",
+                            Shown(raw)
+                        )
+                    })?,
+            );
+            continue;
+        }
         let value = if key == "dims" && raw.contains('x') {
             let dims = raw
                 .split('x')
@@ -431,7 +488,7 @@ fn flags_to_table(args: &[String]) -> Result<(Table, Option<PathBuf>), String> {
             },
         ));
     }
-    Ok((table, out))
+    Ok((table, Export { out, npy_frames }))
 }
 
 /// A flag value in TOML syntax (`1.9`, `[0, 1]`, `{ axes = [2], sigma = 1.9 }`, `true`); a word
@@ -463,7 +520,7 @@ fn looks_like_toml(raw: &str) -> bool {
 }
 
 fn gen_cmd(args: &[String]) -> Result<(), String> {
-    let (table, out) = flags_to_table(args)?;
+    let (table, Export { out, npy_frames }) = flags_to_table(args)?;
     let out = out.ok_or("gen needs --out FILE.{npy,ktx2,png,bin}")?;
     let stem = out
         .file_stem()
@@ -482,6 +539,14 @@ fn gen_cmd(args: &[String]) -> Result<(), String> {
     let s = spec::from_table(&table, Some(&name)).map_err(|e| e.to_string())?;
     // Everything about the output is checked before minutes of generation.
     output_kind(&out, &s)?;
+    if npy_frames.is_some()
+        && !(matches!(s.kind, spec::Kind::Sampler(_))
+            && out.extension().is_some_and(|e| e == "npy"))
+    {
+        return Err(
+            "--npy-frames writes a sampler tile's samples over frames: it needs --kind sampler and an --out ending in .npy".to_string(),
+        );
+    }
     let start = Instant::now();
     let t = generate_with_progress(&s);
     eprintln!(
@@ -498,7 +563,7 @@ fn gen_cmd(args: &[String]) -> Result<(), String> {
         };
         eprintln!("warning: {w}");
     }
-    write_outputs(&t, Some(&s), &out, false)
+    write_outputs(&t, Some(&s), &out, false, npy_frames)
 }
 
 /// The output format a path asks for, or why it cannot be written.
@@ -562,6 +627,39 @@ fn analyze(file: &Path, channels_last: bool, scalar: bool, json: bool) -> Result
     Ok(())
 }
 
+/// `report render`: the samplers in a ray-traced scene (feature `render`, on by default).
+fn render_report(out: &Path, scene: Option<&Path>) -> Result<(), String> {
+    #[cfg(feature = "render")]
+    {
+        use noisebake_cli::render::scene::Scene;
+        use noisebake_cli::report::render;
+        let scene = match scene {
+            Some(p) => Scene::from_obj(p)?,
+            None => Scene::room(),
+        };
+        for l in render::READING.lines() {
+            println!("  {l}");
+        }
+        #[cfg(not(feature = "peers"))]
+        println!(
+            "  (Heitz et al. 2019's tables and OpenQMC are measured with `--features peers`: cargo run --release -p noisebake-cli --features peers -- report render)"
+        );
+        let r = render::run(&scene, out, &mut |s| println!("{s}"))?;
+        println!(
+            "  {:.0} s in all; wrote {}, {} and the render-*.png images",
+            r.seconds,
+            out.join("render.json").display(),
+            out.join("render.png").display()
+        );
+        Ok(())
+    }
+    #[cfg(not(feature = "render"))]
+    {
+        let _ = (out, scene);
+        Err("this noisebake was built without the `render` feature (the ray tracer)".to_string())
+    }
+}
+
 fn report(
     section: &str,
     json: Option<&Path>,
@@ -576,7 +674,7 @@ fn report(
         "all" | "fast" | "stochastic" | "cnj" | "bench" | "vector" | "sampler" | "taa"
     ) {
         return Err(format!(
-            "unknown report section `{section}`: use fast, stochastic, cnj, all, bench, vector, sampler or taa"
+            "unknown report section `{section}`: use fast, stochastic, cnj, all, bench, vector, sampler, taa or render"
         ));
     }
     if section == "taa" {

@@ -453,12 +453,14 @@ fn cache_commands_list_verify_and_prune() {
 }
 
 /// The sampler contract for outside checks: `gen --kind sampler … --out S.npy` writes the
-/// samples as the runtime returns them, float32 of shape (H, W, spp, D) — (frames, H, W, spp,
-/// D) when optimised for several frames — and `.bin` the baked keys the runtime reads them from.
+/// samples as the runtime returns them, float32 of shape (H, W, spp, D), or (N, H, W, spp, D)
+/// for frames 0 … N − 1 with `--npy-frames N` (an export option: the bake is the same), and
+/// `.bin` the baked keys the runtime reads them from; the warped pair runs the lattice and
+/// the `square` one Sobol, as the generated code's `sobol_pairs` says.
 #[test]
 fn gen_writes_a_sampler_tiles_samples_and_its_keys() {
     let d = tmp("sampler");
-    let args = |out: &std::path::Path, frames: &str| {
+    let args = |out: &std::path::Path, npy_frames: Option<&str>| {
         let mut a: Vec<String> = [
             "gen",
             "--kind",
@@ -469,17 +471,19 @@ fn gen_writes_a_sampler_tiles_samples_and_its_keys() {
             "4",
             "--sample-dims",
             "3",
+            "--sample-space",
+            "[\"cosine_hemisphere\",\"square\"]",
             "--spatial-filter",
             "{kind=\"box\",size=3}",
-            "--frames",
-            frames,
             "--seed",
             "2",
-            "--out",
         ]
         .map(String::from)
         .to_vec();
-        a.push(out.to_str().unwrap().to_string());
+        if let Some(n) = npy_frames {
+            a.extend(["--npy-frames".to_string(), n.to_string()]);
+        }
+        a.extend(["--out".to_string(), out.to_str().unwrap().to_string()]);
         a
     };
     let run = |a: Vec<String>| {
@@ -487,45 +491,51 @@ fn gen_writes_a_sampler_tiles_samples_and_its_keys() {
         let (ok, _, err) = noisebake(&refs);
         assert!(ok, "{err}");
     };
-    let (npy, bin, npy2) = (d.join("s.npy"), d.join("s.bin"), d.join("s2.npy"));
-    run(args(&npy, "1"));
-    run(args(&bin, "1"));
-    run(args(&npy2, "2"));
+    let (npy, bin, npy3) = (d.join("s.npy"), d.join("s.bin"), d.join("s3.npy"));
+    run(args(&npy, None));
+    run(args(&bin, None));
+    run(args(&npy3, Some("3")));
     let header = npy_header;
+    let floats = |b: &[u8]| -> Vec<f32> {
+        b.chunks_exact(4)
+            .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+            .collect()
+    };
     let bytes = std::fs::read(&npy).unwrap();
     let (h, start) = header(&bytes);
     assert!(
         h.contains("'descr': '<f4'") && h.contains("'shape': (8, 16, 4, 3)"),
         "{h}"
     );
-    let samples: Vec<f32> = bytes[start..]
-        .chunks_exact(4)
-        .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
-        .collect();
+    let samples = floats(&bytes[start..]);
     assert_eq!(samples.len(), 8 * 16 * 4 * 3);
     let keys = std::fs::read(&bin).unwrap();
     assert_eq!(keys.len(), 16 * 8 * 3 * 2, "three layers of 16-bit keys");
+    let bytes3 = std::fs::read(&npy3).unwrap();
+    let (h3, start3) = header(&bytes3);
+    assert!(h3.contains("'shape': (3, 8, 16, 4, 3)"), "{h3}");
+    let all = floats(&bytes3[start3..]);
+    assert_eq!(all.len(), 3 * samples.len());
+    assert_eq!(&all[..samples.len()], &samples[..], "frame 0 is the bake's");
+    // Pair 0 is warped (the lattice), the lone dimension 2 is `square` (Sobol): bit 1.
     let tile: noise_runtime::SamplerTile<16, 8, 4, 3> =
-        noise_runtime::SamplerTile::new(noise_runtime::Mask3::new(Vec::leak(keys)));
-    for y in 0..8 {
-        for x in 0..16 {
-            for i in 0..4 {
-                for dim in 0..3 {
-                    let at = ((y * 16 + x) * 4 + i) * 3 + dim;
-                    assert_eq!(
-                        samples[at],
-                        tile.sample(x as i32, y as i32, 0, i as u32, dim as u32),
-                        "({x}, {y}) sample {i} dimension {dim}"
-                    );
+        noise_runtime::SamplerTile::new(noise_runtime::Mask3::new(Vec::leak(keys)), 0b10);
+    for f in 0..3u32 {
+        for y in 0..8 {
+            for x in 0..16 {
+                for i in 0..4 {
+                    for dim in 0..3 {
+                        let at = (((f as usize * 8 + y) * 16 + x) * 4 + i) * 3 + dim;
+                        assert_eq!(
+                            all[at],
+                            tile.sample(x as i32, y as i32, f, i as u32, dim as u32),
+                            "frame {f} ({x}, {y}) sample {i} dimension {dim}"
+                        );
+                    }
                 }
             }
         }
     }
-    // Optimised for two frames: a time axis, and frame 1 continues each pixel's sequence.
-    let bytes2 = std::fs::read(&npy2).unwrap();
-    let (h2, start2) = header(&bytes2);
-    assert!(h2.contains("'shape': (2, 8, 16, 4, 3)"), "{h2}");
-    assert_eq!(bytes2.len() - start2, 2 * samples.len() * 4);
 }
 
 /// The TAA mask through the command line, as the contract writes it (smaller): the

@@ -285,7 +285,8 @@ fn samplers_match_bit_for_bit() {
 
 /// A baked sampler tile read through `nb_sampler_tile_bits` (its keys uploaded as the r16uint
 /// mask they are) gives the runtime's `SamplerTile::sample_bits` for every pixel, frame, sample
-/// and dimension, coordinates far outside the tile included.
+/// and dimension, coordinates far outside the tile included; the first pair runs Sobol (the
+/// byte tables against WGSL's bit loop) and the lone third dimension the lattice.
 #[test]
 fn sampler_tiles_match_bit_for_bit() {
     use noisebake::SamplerTile;
@@ -296,7 +297,7 @@ fn sampler_tiles_match_bit_for_bit() {
         )
         .data,
     ));
-    let tile: SamplerTile<8, 4, 5, 3> = SamplerTile::new(keys);
+    let tile: SamplerTile<8, 4, 5, 3> = SamplerTile::new(keys, 0b01);
     Gpu::each_for_tests(|g| {
         let texture = g.upload_mask(keys.gpu_texture(), keys.gpu_bytes().unwrap());
         let mut rng = Rng(6);
@@ -317,7 +318,7 @@ fn sampler_tiles_match_bit_for_bit() {
              @group(0) @binding(2) var keys: texture_2d_array<u32>;",
             "let p = inp[i];
              let sd = bitcast<u32>(p.w);
-             outp[i] = nb_sampler_tile_bits(keys, p.xy, bitcast<u32>(p.z), sd & 7u, sd >> 3u, 5u);",
+             outp[i] = nb_sampler_tile_bits(keys, p.xy, bitcast<u32>(p.z), sd & 7u, sd >> 3u, 5u, 1u);",
         );
         let groups = inputs.len().div_ceil(64) as u32;
         let out = g
@@ -709,5 +710,47 @@ fn masks_of_every_format_upload_and_load_as_the_runtime_reads_them() {
         check_mask_format::<[f32; 2]>(g, 19);
         check_mask_format::<[f32; 3]>(g, 20);
         check_mask_format::<[f32; 4]>(g, 21);
+    });
+}
+
+/// The polar warps a sampler tile's pairs are trained for: the same `(u, v)` in, the CPU's
+/// direction and disk point out, within `2^-10` per component (Vulkan's `sin`/`cos`), edges
+/// of the square included.
+#[test]
+fn polar_warps_match_within_tolerance() {
+    use noisebake::warp;
+    Gpu::each_for_tests(|g| {
+        let mut rng = Rng(11);
+        let mut inputs: Vec<[f32; 4]> = (0..N)
+            .map(|_| {
+                let u = (rng.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
+                let v = (rng.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
+                [u, v, 0.0, 0.0]
+            })
+            .collect();
+        inputs[0] = [0.0, 0.0, 0.0, 0.0];
+        inputs[1] = [1.0, 1.0, 0.0, 0.0];
+        inputs[2] = [0.999_999_94, 0.5, 0.0, 0.0];
+        let flat: Vec<f32> = inputs.iter().flatten().copied().collect();
+        let kernel = kernel(
+            "vec4<f32>",
+            "@group(0) @binding(1) var<storage, read_write> outp: array<vec4<f32>>;",
+            "let p = inp[i];
+             outp[2u * i] = vec4<f32>(nb_cosine_hemisphere_polar(p.x, p.y), 0.0);
+             outp[2u * i + 1u] = vec4<f32>(nb_disk_polar(p.x, p.y), 0.0, 0.0);",
+        );
+        let out = floats(&run(g, &kernel, &bytes_of(&flat), N, N * 32));
+        let mut worst = 0.0f32;
+        for (i, &[u, v, _, _]) in inputs.iter().enumerate() {
+            let d = warp::cosine_hemisphere_polar(u, v);
+            let k = warp::disk_polar(u, v);
+            for c in 0..3 {
+                worst = worst.max((out[8 * i + c] - d[c]).abs());
+            }
+            for c in 0..2 {
+                worst = worst.max((out[8 * i + 4 + c] - k[c]).abs());
+            }
+        }
+        assert!(worst <= 2f32.powi(-10), "{}: worst {worst}", g.describe());
     });
 }

@@ -115,24 +115,27 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
             }
         }
         Kind::Sampler(p) => {
-            // Per pair and sweep, every pixel scores `candidates` blocks (a dot product over
-            // the training values) and a share of them update the filter's support; pairs run
-            // on their own threads. Sweeps: what a bake typically needs before its gain is spent.
+            // Per pair: every pixel's errors on the training integrands (each weighing the
+            // spp samples of one frame, or of `frames` frames under an EMA), then sweeps in
+            // which every pixel scores `candidates` swaps (a pass over its errors) and a share
+            // of them update the filter's support; pairs run on their own threads.
             let s = crate::generate::sampler::Schedule::DEFAULT;
-            let pixels = spec.dims[0] * spec.dims[1];
-            let len = crate::generate::sampler::training_len(s.training, p.frames);
-            let blocks = crate::generate::sampler::pool_blocks(pixels, p.spp, p.frames, len, &s);
-            let (pixels, len) = (pixels as f64, len as f64);
+            let pixels = (spec.dims[0] * spec.dims[1]) as f64;
+            let len = s.integrands(p) as f64;
+            let history = match p.temporal {
+                crate::spec::fast::TemporalFilter::Ema { .. } => p.frames as f64,
+                _ => 1.0,
+            };
             let pairs = p.sample_dims.div_ceil(2) as f64;
             let width = |n: usize| crate::generate::sampler::support_width(p.spatial, n) as f64;
             let support = width(spec.dims[0]) * width(spec.dims[1]);
-            let per_sweep = pixels * len * (s.candidates as f64 + 0.1 * support) * SAMPLER_C;
-            let pool = blocks as f64 * len * (p.spp as f64 + 2.0) * SAMPLER_POOL_C;
+            let table = pixels * len * p.spp as f64 * history * SAMPLER_POOL_C;
+            let per_sweep = pixels * len * (s.candidates as f64 + 0.2 * support) * SAMPLER_C;
             let waves = (pairs / threads.max(1) as f64).ceil();
             Estimate {
                 texels: n,
                 footprint: support as u64,
-                seconds: waves * (pool + SAMPLER_SWEEPS * per_sweep),
+                seconds: waves * (table + SAMPLER_SWEEPS * per_sweep),
             }
         }
         Kind::White => Estimate {

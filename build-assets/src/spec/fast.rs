@@ -78,6 +78,15 @@ pub enum Filter {
         /// Order.
         order: usize,
     },
+    /// The à-trous wavelet filter of SVGF-style denoisers (Dammertz et al. 2010; Schied et al.
+    /// 2017, §4.4) without its edge-stopping weights: `passes` convolutions with the B3 spline
+    /// `(1, 4, 6, 4, 1)/16`, the taps of pass `k` spread `2^k` texels apart. A fixed linear
+    /// filter, separable, `4·(2^passes − 1) + 1` taps wide; a denoiser's edge-stopping weights
+    /// cut it at edges, which the loss cannot know.
+    Atrous {
+        /// Passes (1 to 5).
+        passes: usize,
+    },
 }
 
 impl Filter {
@@ -89,6 +98,7 @@ impl Filter {
             Filter::Box { size } => format!("{{kind=box,size={size}}}"),
             Filter::Gauss { sigma } => format!("{{kind=gauss,sigma={}}}", num(sigma)),
             Filter::Binomial { order } => format!("{{kind=binomial,order={order}}}"),
+            Filter::Atrous { passes } => format!("{{kind=atrous,passes={passes}}}"),
         }
     }
 
@@ -113,6 +123,20 @@ impl Filter {
                     row = next;
                 }
                 row
+            }
+            Filter::Atrous { passes } => {
+                let mut taps = vec![1.0f64];
+                for k in 0..passes {
+                    let step = 1usize << k;
+                    let mut next = vec![0.0; taps.len() + 4 * step];
+                    for (i, &t) in taps.iter().enumerate() {
+                        for (j, b) in [1.0, 4.0, 6.0, 4.0, 1.0].iter().enumerate() {
+                            next[i + j * step] += t * b / 16.0;
+                        }
+                    }
+                    taps = next;
+                }
+                taps
             }
         };
         let sum: f64 = t.iter().sum();
@@ -718,7 +742,10 @@ pub(super) fn parse(
 type Entries<'a> = &'a [(Spanned<String>, Spanned<Value>)];
 
 /// Reads the `kind` of a filter table and checks that only `allowed` other keys appear.
-fn filter_table<'a>(key: &str, v: &'a Spanned<Value>) -> Result<(&'a str, Entries<'a>), SpecError> {
+pub(super) fn filter_table<'a>(
+    key: &str,
+    v: &'a Spanned<Value>,
+) -> Result<(&'a str, Entries<'a>), SpecError> {
     let Value::Table(t) = &v.value else {
         return Err(type_error(
             key,
@@ -893,12 +920,21 @@ pub(super) fn spatial_filter(v: &Spanned<Value>) -> Result<Filter, SpecError> {
                 64,
             )?,
         },
+        "atrous" => Filter::Atrous {
+            passes: count(
+                "spatial_filter.passes",
+                param(K, t, "passes", v.span, &[])?,
+                3,
+                1,
+                5,
+            )?,
+        },
         other => {
             return Err(SpecError::at(
                 "spatial_filter.kind",
                 v.span,
                 format!(
-                    "unknown spatial filter \"{}\"; valid: none, box, gauss, binomial",
+                    "unknown spatial filter \"{}\"; valid: none, box, gauss, binomial, atrous",
                     Shown(other)
                 ),
             ));
@@ -906,7 +942,7 @@ pub(super) fn spatial_filter(v: &Spanned<Value>) -> Result<Filter, SpecError> {
     })
 }
 
-fn temporal_filter(v: &Spanned<Value>) -> Result<TemporalFilter, SpecError> {
+pub(super) fn temporal_filter(v: &Spanned<Value>) -> Result<TemporalFilter, SpecError> {
     const K: &str = "temporal_filter";
     let (kind, t) = filter_table(K, v)?;
     Ok(match kind {

@@ -333,7 +333,7 @@ impl<'a> Fields<'a> {
     }
 }
 
-fn type_error(key: &str, want: &str, v: &Spanned<Value>) -> SpecError {
+pub(super) fn type_error(key: &str, want: &str, v: &Spanned<Value>) -> SpecError {
     SpecError::at(
         key,
         v.span,
@@ -437,7 +437,7 @@ pub fn from_table(table: &Table, name: Option<&str>) -> Result<TextureSpec, Spec
                     "dims",
                     dims_v.span,
                     format!(
-                        "a sampler tile of {dims:?} has {pixels} pixels; the limit is {} (256×256: a pixel's key indexes a pool of at most 2^16 blocks)",
+                        "a sampler tile of {dims:?} has {pixels} pixels; the limit is {} (256×256: the optimiser holds every pixel's errors on its training integrands)",
                         sampler::MAX_PIXELS
                     ),
                 ));

@@ -18,16 +18,17 @@
 //!   each pixel's first 2^m frames form a (0, m, 2)-net in every pair of its first two
 //!   dimensions.
 //!
-//! - [`SamplerTile`]: the baked form (kind `sampler`): per pixel, a block of one Owen-scrambled
-//!   Sobol sequence, the blocks arranged at build time so that the pixels' errors are blue
-//!   under the scene's denoiser (Heitz et al. 2019's goal over Ahmed and Wonka 2020's blocks,
-//!   with our own optimiser).
+//! - [`SamplerTile`]: the baked form (kind `sampler`): `rd_ign_r2`'s structure — every pixel
+//!   runs the R_D sequence, rotated by a shift of its own — with the shifts arranged at build
+//!   time so that the pixels' errors are blue under the scene's denoiser, in the space the
+//!   ray uses, on one frame or accumulated (Heitz et al. 2019's goal; Belcour and Heitz 2021's
+//!   lattice with optimised shifts).
 //!
 //! Everything is integer arithmetic on 32-bit fractions, so `nb_ign_r2`, `nb_rd2_ign_r2`,
 //! `nb_rd3_ign_r2` and `nb_sobol_owen` in the WGSL library give the same bits.
 
 mod tile;
-pub use tile::{SamplerTile, tile_index, tile_value};
+pub use tile::{MAX_TILE_DIMS, SamplerTile, TILE_STEPS, sobol2, tile_point};
 
 use crate::hash::hash2;
 use crate::sequence::{GOLDEN, R2_A1, R2_A2, frac_mul, to_unit};

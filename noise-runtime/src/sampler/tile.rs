@@ -1,77 +1,200 @@
-//! Baked sampler tiles: `spp` samples of `D` dimensions per pixel per frame, from per-pixel keys
-//! chosen at build time (kind `sampler`).
+//! Baked sampler tiles: `spp` samples of `D` dimensions per pixel per frame, from per-pixel
+//! shifts chosen at build time (kind `sampler`).
 //!
-//! Dimensions go in pairs (0–1, 2–3, …; an odd last one alone), and every pair draws its points
-//! from one Owen-scrambled Sobol sequence of its own (Burley 2020, "Practical Hash-based Owen
-//! Scrambling", JCGT 9(4), §3; the pair's seed is fixed). The sequence is cut into blocks of
-//! `B = spp` rounded up to a power of two consecutive points, and each pixel holds, per pair,
-//! the index of the block it takes in frame 0: its *key*. In frame `f` the pixel takes block
-//! `key ^ f`. So:
+//! Every pixel runs one low-discrepancy sequence per pair of dimensions, shifted by the
+//! pixel's own keys; sample `i` of frame `frame` is the sequence's point `n = frame · SPP + i`
+//! ([`tile_point`]). The sequence depends on the space the pair is warped into:
 //!
-//! - **Each pixel's samples are a net.** An aligned block of `2^m` Sobol points is a
-//!   (0, m, 2)-net after Owen scrambling, so a pixel's `spp` samples are stratified whatever its
-//!   key (for a power-of-two `spp`), and the frames `0 … 2^j − 1` together take an aligned group
-//!   of `2^j` blocks: a pixel's samples over frames continue one progressive net.
-//! - **Neighbours can be stratified together.** Blocks `b` and `b ^ 1` make an aligned block of
-//!   `2B` points, blocks `b ^ 0 … b ^ 3` one of `4B`, and so on: pixels whose keys differ in
-//!   their low bits hold samples that are stratified *jointly*, which is what cancels their
-//!   errors under a denoiser's blur. Ahmed and Wonka (2020) get this from the Morton order of the
-//!   pixels; the generator chooses the keys for the scene's filter instead, from a pool several
-//!   times the tile's size, so that the pixels' errors are blue (the goal of Heitz, Belcour,
-//!   Ostromoukhov, Coeurjolly and Iehl 2019, "A Low-Discrepancy Sampler that Distributes Monte
-//!   Carlo Errors as a Blue Noise in Screen Space"). XOR-ing every key with the frame keeps
-//!   siblings siblings, so that structure holds in every frame.
+//! - **Directions and disks: a rank-1 lattice.** The `D`-dimensional R_D sequence (Roberts
+//!   2018, "The Unreasonable Effectiveness of Quasirandom Sequences": point `n` is
+//!   `frac(n · α)`, `α_d = φ_D^-(d+1)`, `φ_D` the positive root of `x^(D+1) = x + 1`),
+//!   Cranley–Patterson rotated: `frac(n · α_d + key_d / 2^16)`, in 32-bit fixed point
+//!   (`n · A_d + key_d · 2^16`, wrapping). Its points are evenly spread along every line
+//!   through the square, what a polar warp (`φ = 2πv` wraps) asks for, and it is the structure
+//!   of Belcour and Heitz 2021's screen-space sampler.
+//! - **The square: the Sobol (0, 2)-sequence.** Dimensions 0 and 1 of Sobol's sequence
+//!   ([`sobol2`]), digitally shifted: `sobol2(n, d mod 2) ⊕ key_d · 2^16`. Every frame of a
+//!   power-of-two `SPP` is a (0, m, 2)-net, stratified in every elementary interval, what
+//!   half-planes of the square (an area light's edge) ask for; it is the structure of Heitz et
+//!   al. 2019's tables.
 //!
-//! The keys are stored as a mask of 16-bit texels, `D` layers of `W × H` (layer = dimension; a
-//! pair's key is its first layer's texel plus `2^16` times its second's), so a lookup reads one
-//! texel per key and the tile uploads, caches and exports as any other mask.
-//! `nb_sampler_tile` in the WGSL library is the same integer arithmetic.
+//! The bake sets which pairs run Sobol (`sobol_pairs`, bit `p` for dimensions `2p`, `2p + 1`).
+//! Either way:
+//!
+//! - **Each pixel's samples are low-discrepancy in time.** Frame `f` takes points
+//!   `f · SPP … f · SPP + SPP − 1`: a pixel's samples over frames continue one progressive
+//!   sequence, which is what an accumulating renderer (TAA, a denoiser's temporal pass)
+//!   averages.
+//! - **Every frame is the first, moved.** The lattice's frame `f` is frame 0 with every
+//!   pixel's shift moved by the same `f · SPP · α`; Sobol's (for a power-of-two `SPP`) is frame
+//!   0 with every key XORed by the same `sobol2(f · SPP)`, the sequence being linear over the
+//!   bits. The arrangement of keys, which is what the generator optimises, serves every frame
+//!   alike.
+//! - **The keys make the errors blue.** The generator starts from the free construction's
+//!   shifts (`noise_runtime::sampler::rd_ign_r2`: interleaved gradient noise and the R2 grid)
+//!   and swaps keys between pixels only where that lowers the error left after the declared
+//!   denoiser (Heitz et al. 2019's goal) for integrands of the pair's space.
+//! - **A read is a texel and a few integer operations**: a multiply-add for the lattice; a
+//!   bit reversal, or four byte-table lookups, and an XOR for Sobol. No bit loop, no hash.
+//!
+//! The keys are stored as a mask of 16-bit texels, `D` layers of `W × H` (layer = dimension),
+//! so the tile uploads, caches and exports as any other mask. `nb_sampler_tile` in the WGSL
+//! library is the same integer arithmetic.
 
-use super::{combine, owen, sobol};
 use crate::mask::Mask3;
 use crate::sequence::to_unit;
+use crate::warp;
 
-/// The word the pairs' scramble seeds are derived from.
-const TILE_SEED: u32 = 0x5348_5546;
+/// Most dimensions of a tile.
+pub const MAX_TILE_DIMS: usize = 8;
 
-/// The Sobol index of sample `i` (below `spp`) of a pixel keyed `key`, in `frame`: point `i`
-/// of block `key ^ frame`, blocks being `spp` rounded up to a power of two points long (a block
-/// index past `2^32 / B` wraps).
+/// `⌊2^32 / φ_D^(d+1)⌋`: the R_D sequence's step in dimension `d` for `D = dims` (row
+/// `dims − 1`), the top 32 bits of `noise_runtime::sampler::rd`'s 64-bit steps.
+pub const TILE_STEPS: [[u32; MAX_TILE_DIMS]; MAX_TILE_DIMS] = [
+    [0x9e37_79b9, 0, 0, 0, 0, 0, 0, 0],
+    [0xc13f_a9a9, 0x91e1_0da5, 0, 0, 0, 0, 0, 0],
+    [0xd1b5_4a32, 0xabc9_8388, 0x8cb9_2ba7, 0, 0, 0, 0, 0],
+    [
+        0xdb4f_0b91,
+        0xbbe0_5633,
+        0xa0f2_ec75,
+        0x89e1_8285,
+        0,
+        0,
+        0,
+        0,
+    ],
+    [
+        0xe19b_01aa,
+        0xc6d1_d6c8,
+        0xaf36_d01e,
+        0x9a69_443f,
+        0x8814_03b9,
+        0,
+        0,
+        0,
+    ],
+    [
+        0xe60e_2b72,
+        0xcebd_76d9,
+        0xb9c9_aa3a,
+        0xa6f5_777f,
+        0x9609_c71e,
+        0x86d5_16e5,
+        0,
+        0,
+    ],
+    [
+        0xe95e_1dd1,
+        0xd4bc_74e1,
+        0xc1ed_bc5b,
+        0xb0c8_ac50,
+        0xa127_a31c,
+        0x92e8_52c8,
+        0x85eb_75c3,
+        0,
+    ],
+    [
+        0xebed_eed9,
+        0xd96e_b1a8,
+        0xc862_b36d,
+        0xb8ac_d90c,
+        0xaa32_4f90,
+        0x9cda_5e69,
+        0x908e_3d2c,
+        0x8538_ecb5,
+    ],
+];
+
+/// The direction numbers of the Sobol sequence's second dimension (Sobol 1967; the Pascal
+/// matrix mod 2: `v_0 = 2^31`, `v_k = v_(k−1) ⊕ (v_(k−1) >> 1)`), as byte tables: entry `b` of
+/// table `j` is the XOR of the direction numbers `8j … 8j + 7` that byte `j` of the index
+/// selects. Four lookups replace a 32-step bit loop.
+const SOBOL1_BYTES: [[u32; 256]; 4] = sobol1_bytes();
+
+const fn sobol1_bytes() -> [[u32; 256]; 4] {
+    let mut v = [0u32; 32];
+    v[0] = 1 << 31;
+    let mut k = 1;
+    while k < 32 {
+        v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+        k += 1;
+    }
+    let mut t = [[0u32; 256]; 4];
+    let mut j = 0;
+    while j < 4 {
+        let mut b = 0;
+        while b < 256 {
+            let mut x = 0u32;
+            let mut bit = 0;
+            while bit < 8 {
+                if b >> bit & 1 == 1 {
+                    x ^= v[8 * j + bit];
+                }
+                bit += 1;
+            }
+            t[j][b] = x;
+            b += 1;
+        }
+        j += 1;
+    }
+    t
+}
+
+/// Dimension `axis` (0 or 1) of point `n` of the Sobol sequence's first two dimensions, as a
+/// 32-bit fraction: dimension 0 is the van der Corput sequence (`n` bit-reversed), dimension 1
+/// the Pascal matrix's image of `n`. Together a (0, 2)-sequence in base 2: every aligned block
+/// of `2^m` points is a (0, m, 2)-net.
 #[must_use]
-#[inline]
-pub const fn tile_index(key: u32, frame: u32, i: u32, spp: u32) -> u32 {
-    let shift = block_shift(spp);
-    match (key ^ frame).checked_shl(shift) {
-        Some(base) => base | i,
-        None => i,
+#[inline(always)]
+pub const fn sobol2(n: u32, axis: u32) -> u32 {
+    if axis & 1 == 0 {
+        n.reverse_bits()
+    } else {
+        SOBOL1_BYTES[0][(n & 0xff) as usize]
+            ^ SOBOL1_BYTES[1][(n >> 8 & 0xff) as usize]
+            ^ SOBOL1_BYTES[2][(n >> 16 & 0xff) as usize]
+            ^ SOBOL1_BYTES[3][(n >> 24) as usize]
     }
 }
 
-/// `log2` of the block length for `spp` samples: `spp` rounded up to a power of two.
-#[inline]
-const fn block_shift(spp: u32) -> u32 {
-    32 - spp.saturating_sub(1).leading_zeros()
-}
-
-/// Dimension `axis` (0 or 1) of the point at Sobol `index` of pair `pair` (dimensions
-/// `2·pair` and `2·pair + 1`), as a 32-bit fraction: Sobol's dimension `axis`, Owen-scrambled
-/// by the pair's own seed. What [`SamplerTile::sample`] returns, and what the generator
-/// evaluates when it chooses keys.
+/// Dimension `d` of sample `n` of a pixel whose shift in that dimension is `key`, for a tile
+/// of `dims` dimensions whose pairs flagged in `sobol_pairs` (bit `p` for dimensions `2p`,
+/// `2p + 1`) run the Sobol sequence, as a 32-bit fraction:
+///
+/// - a **lattice** dimension (flag clear) is the R_D sequence Cranley–Patterson rotated by the
+///   key: `n · A_d + key · 2^16`, wrapping, i.e. `frac(n · α_d + key / 2^16)`;
+/// - a **Sobol** dimension (flag set) is [`sobol2`]`(n, d mod 2)` digitally shifted by the key:
+///   `sobol2(n, d mod 2) ⊕ key · 2^16`.
+///
+/// `dims` is 1 to [`MAX_TILE_DIMS`] and `d` below it (others are taken modulo).
 #[must_use]
-#[inline]
-pub fn tile_value(index: u32, pair: u32, axis: usize) -> u32 {
-    let axis = axis & 1;
-    owen(
-        sobol(index, axis),
-        combine(combine(TILE_SEED, pair), axis as u32),
-    )
+#[inline(always)]
+pub const fn tile_point(n: u32, d: u32, dims: u32, key: u16, sobol_pairs: u8) -> u32 {
+    let row = if dims == 0 {
+        0
+    } else if dims as usize > MAX_TILE_DIMS {
+        MAX_TILE_DIMS - 1
+    } else {
+        dims as usize - 1
+    };
+    let d = d % (row as u32 + 1);
+    let shift = (key as u32) << 16;
+    if sobol_pairs >> (d / 2) & 1 == 1 {
+        sobol2(n, d) ^ shift
+    } else {
+        n.wrapping_mul(TILE_STEPS[row][d as usize])
+            .wrapping_add(shift)
+    }
 }
 
 /// A baked sampler tile: `W × H` pixels, `SPP` samples per pixel per frame, `D` dimensions per
-/// sample, over the 16-bit key mask the build baked (`D` layers). Coordinates wrap toroidally.
+/// sample, over the 16-bit shift mask the build baked (`D` layers). Coordinates wrap
+/// toroidally.
 #[derive(Clone, Copy, Debug)]
 pub struct SamplerTile<const W: u32, const H: u32, const SPP: u32, const D: u32> {
     keys: Mask3<u16, W, H, D>,
+    sobol_pairs: u8,
 }
 
 impl<const W: u32, const H: u32, const SPP: u32, const D: u32> SamplerTile<W, H, SPP, D> {
@@ -80,44 +203,46 @@ impl<const W: u32, const H: u32, const SPP: u32, const D: u32> SamplerTile<W, H,
     /// Dimensions per sample.
     pub const DIMS: u32 = D;
 
-    /// A tile over its key mask; fails to compile (in a `const`/`static`) when `SPP` or `D` is
-    /// zero.
-    pub const fn new(keys: Mask3<u16, W, H, D>) -> Self {
+    /// A tile over its shift mask, whose pairs flagged in `sobol_pairs` (bit `p` for
+    /// dimensions `2p`, `2p + 1`: the pairs baked with `sample_space = "square"`) run the Sobol
+    /// sequence and the others the R_D lattice ([`tile_point`]); the generated code passes what
+    /// the bake chose. Fails to compile (in a `const`/`static`) when `SPP` or `D` is zero or `D`
+    /// is above [`MAX_TILE_DIMS`].
+    pub const fn new(keys: Mask3<u16, W, H, D>, sobol_pairs: u8) -> Self {
         assert!(
-            SPP > 0 && D > 0,
-            "a sampler tile needs samples and dimensions"
+            SPP > 0 && D > 0 && D as usize <= MAX_TILE_DIMS,
+            "a sampler tile needs samples and 1 to 8 dimensions"
         );
-        Self { keys }
+        Self { keys, sobol_pairs }
     }
 
-    /// The key mask (one 16-bit key per pixel and dimension), e.g. to upload it to a GPU for
-    /// `nb_sampler_tile`.
+    /// The pairs that run the Sobol sequence (bit `p` for dimensions `2p`, `2p + 1`), e.g. to
+    /// pass to `nb_sampler_tile`.
+    pub const fn sobol_pairs(&self) -> u8 {
+        self.sobol_pairs
+    }
+
+    /// The shift mask (one 16-bit shift per pixel and dimension), e.g. to upload it to a GPU
+    /// for `nb_sampler_tile`.
     pub const fn keys(&self) -> &Mask3<u16, W, H, D> {
         &self.keys
     }
 
-    /// The key of the pair holding dimension `d` at pixel (x, y).
-    #[inline]
-    fn pair_key(&self, x: i32, y: i32, d: u32) -> u32 {
-        let first = d & !1;
-        let lo = self.keys.get(x, y, first as i32) as u32;
-        let hi = if first + 1 < D {
-            self.keys.get(x, y, first as i32 + 1) as u32
-        } else {
-            0
-        };
-        lo | hi << 16
-    }
-
-    /// Dimension `d` of sample `i` of pixel (x, y) in `frame`, as a 32-bit fraction: point `i`
-    /// of block `key ^ frame` of the pair holding `d` ([`tile_index`], [`tile_value`]). `i` and
-    /// `d` are taken modulo `SPP` and `D`.
+    /// Dimension `d` of sample `i` of pixel (x, y) in `frame`, as a 32-bit fraction: the
+    /// sequence's point `frame · SPP + i` (wrapping) shifted by the pixel's key
+    /// ([`tile_point`]). `i` and `d` are taken modulo `SPP` and `D`.
     #[must_use]
     #[inline]
     pub fn sample_bits(&self, x: i32, y: i32, frame: u32, i: u32, d: u32) -> u32 {
         let (i, d) = (i % SPP, d % D);
-        let index = tile_index(self.pair_key(x, y, d), frame, i, SPP);
-        tile_value(index, d / 2, (d & 1) as usize)
+        let key = self.keys.get(x, y, d as i32);
+        tile_point(
+            frame.wrapping_mul(SPP).wrapping_add(i),
+            d,
+            D,
+            key,
+            self.sobol_pairs,
+        )
     }
 
     /// Dimension `d` of sample `i` of pixel (x, y) in `frame`, in `[0, 1)`: the top 24 bits of
@@ -128,20 +253,34 @@ impl<const W: u32, const H: u32, const SPP: u32, const D: u32> SamplerTile<W, H,
         to_unit(self.sample_bits(x, y, frame, i, d))
     }
 
-    /// Dimensions `d` and `d + 1` of sample `i` (`d` even): a 2D point, from one pair's key.
+    /// Dimensions `d` and `d + 1` of sample `i` (the second wraps to dimension 0 past `D`).
     #[must_use]
     #[inline]
     pub fn sample2(&self, x: i32, y: i32, frame: u32, i: u32, d: u32) -> [f32; 2] {
-        let (i, d) = (i % SPP, (d % D) & !1);
-        let index = tile_index(self.pair_key(x, y, d), frame, i, SPP);
         [
-            to_unit(tile_value(index, d / 2, 0)),
-            if d + 1 < D {
-                to_unit(tile_value(index, d / 2, 1))
-            } else {
-                0.0
-            },
+            self.sample(x, y, frame, i, d),
+            self.sample(x, y, frame, i, d + 1),
         ]
+    }
+
+    /// Pair `pair` (dimensions `2·pair`, `2·pair + 1`) of sample `i` as a cosine-weighted
+    /// direction about +z, by the warp the tile's `sample_space = "cosine_hemisphere"` is
+    /// trained for: `r = √u`, `φ = 2πv`, `z = √(1 − u)`
+    /// ([`warp::cosine_hemisphere_polar`]).
+    #[must_use]
+    #[inline]
+    pub fn cosine_hemisphere(&self, x: i32, y: i32, frame: u32, i: u32, pair: u32) -> [f32; 3] {
+        let [u, v] = self.sample2(x, y, frame, i, 2 * pair);
+        warp::cosine_hemisphere_polar(u, v)
+    }
+
+    /// Pair `pair` of sample `i` as a point of the unit disk, by the warp of `sample_space =
+    /// "disk"`: `r = √u`, `φ = 2πv` ([`warp::disk_polar`]).
+    #[must_use]
+    #[inline]
+    pub fn disk(&self, x: i32, y: i32, frame: u32, i: u32, pair: u32) -> [f32; 2] {
+        let [u, v] = self.sample2(x, y, frame, i, 2 * pair);
+        warp::disk_polar(u, v)
     }
 }
 
@@ -151,117 +290,195 @@ mod tests {
     use std::vec::Vec;
 
     fn tile(keys: &'static [u8]) -> SamplerTile<4, 2, 8, 3> {
-        SamplerTile::new(Mask3::new(keys))
+        SamplerTile::new(Mask3::new(keys), 0)
     }
 
-    /// The lookup reads the keys of the dimension's pair: changing a key of pair 0 changes
-    /// dimensions 0 and 1 of that pixel and nothing else.
+    /// `sobol2`'s byte tables give the Sobol sequence's second dimension: the direction numbers
+    /// applied bit by bit, for indices across all four bytes.
     #[test]
-    fn a_key_moves_its_pair_and_pixel_only() {
+    fn sobol_tables_are_the_bit_loop() {
+        let slow = |mut n: u32| {
+            let (mut x, mut v) = (0u32, 1u32 << 31);
+            while n != 0 {
+                if n & 1 == 1 {
+                    x ^= v;
+                }
+                n >>= 1;
+                v ^= v >> 1;
+            }
+            x
+        };
+        let mut n = 1u32;
+        for _ in 0..2000 {
+            assert_eq!(sobol2(n, 1), slow(n), "{n:#x}");
+            assert_eq!(sobol2(n, 0), n.reverse_bits());
+            n = n.wrapping_mul(0x9e37_79b9).wrapping_add(0x7f4a_7c15);
+        }
+        // The first points: 0, 1/2, then (1/4, 3/4), (3/4, 1/4).
+        assert_eq!(
+            (0..4).map(|n| sobol2(n, 1) >> 30).collect::<Vec<_>>(),
+            [0, 2, 3, 1]
+        );
+    }
+
+    /// A Sobol pair's frames of 4 samples are each a (0, 2, 2)-net (one point in each of the
+    /// 2 × 2, 4 × 1 and 1 × 4 elementary intervals), every frame is frame 0 with one XOR for all
+    /// pixels, and the lattice pairs of the same tile are untouched by the flag.
+    #[test]
+    fn sobol_pairs_are_nets_in_every_frame() {
+        let bytes: Vec<u8> = (0..4 * 2 * 3 * 2).map(|i| (i * 29 + 5) as u8).collect();
+        let keys = Mask3::new(Vec::leak(bytes));
+        let lat: SamplerTile<4, 2, 4, 3> = SamplerTile::new(keys, 0);
+        let sob: SamplerTile<4, 2, 4, 3> = SamplerTile::new(keys, 0b10);
+        for f in [0u32, 1, 7, 1000] {
+            for (x, y) in [(0, 0), (3, 1)] {
+                for d in [0u32, 1] {
+                    assert_eq!(
+                        lat.sample_bits(x, y, f, 1, d),
+                        sob.sample_bits(x, y, f, 1, d)
+                    );
+                }
+                // The lone dimension 2 of a 3-dimensional tile is the flagged pair's first axis:
+                // van der Corput, one point in each quarter.
+                let mut strata = [0u8; 4];
+                for i in 0..4 {
+                    strata[(sob.sample_bits(x, y, f, i, 2) >> 30) as usize] += 1;
+                }
+                assert_eq!(strata, [1; 4], "frame {f}");
+            }
+        }
+        let bytes: Vec<u8> = (0..4 * 2 * 4 * 2).map(|i| (i * 73 + 9) as u8).collect();
+        let four: SamplerTile<4, 2, 4, 4> = SamplerTile::new(Mask3::new(Vec::leak(bytes)), 0b10);
+        for f in [0u32, 3, 12345] {
+            let pts: Vec<[u32; 2]> = (0..4)
+                .map(|i| {
+                    [
+                        four.sample_bits(2, 1, f, i, 2),
+                        four.sample_bits(2, 1, f, i, 3),
+                    ]
+                })
+                .collect();
+            let top = |x: u32, bits: u32| if bits == 0 { 0 } else { x >> (32 - bits) };
+            for (bu, bv) in [(1, 1), (2, 0), (0, 2)] {
+                let mut cells = [0u8; 4];
+                for p in &pts {
+                    cells[(top(p[0], bu) << bv | top(p[1], bv)) as usize] += 1;
+                }
+                assert_eq!(cells, [1; 4], "frame {f}, {bu} × {bv} bits");
+            }
+            for i in 0..4 {
+                for d in [2u32, 3] {
+                    let moved = four.sample_bits(0, 0, f, i, d) ^ four.sample_bits(0, 0, 0, i, d);
+                    assert_eq!(
+                        moved,
+                        four.sample_bits(3, 1, f, i, d) ^ four.sample_bits(3, 1, 0, i, d)
+                    );
+                }
+            }
+        }
+    }
+
+    /// The steps are the R_D sequence's: `α_d = φ^-(d+1)` with `φ^(D+1) = φ + 1`, to 32 bits,
+    /// and the first rows agree with the 64-bit steps of `sampler::rd`.
+    #[test]
+    fn steps_are_powers_of_the_generalised_golden_ratio() {
+        for dims in 1..=MAX_TILE_DIMS {
+            // φ by Newton's method on x^(D+1) − x − 1.
+            let mut phi = 1.5f64;
+            for _ in 0..100 {
+                let f = phi.powi(dims as i32 + 1) - phi - 1.0;
+                phi -= f / ((dims as f64 + 1.0) * phi.powi(dims as i32) - 1.0);
+            }
+            for d in 0..dims {
+                let want = (4_294_967_296.0 / phi.powi(d as i32 + 1)) as u64;
+                let got = TILE_STEPS[dims - 1][d] as u64;
+                assert!(
+                    got.abs_diff(want) <= 2,
+                    "D = {dims}, d = {d}: {got:#x} {want:#x}"
+                );
+            }
+            assert!(TILE_STEPS[dims - 1][dims..].iter().all(|&s| s == 0));
+        }
+    }
+
+    /// A key moves its own pixel and dimension only, and the lookup is `n · A_d + key · 2^16`
+    /// with `n = frame · SPP + i`; coordinates wrap.
+    #[test]
+    fn a_key_is_its_pixels_shift_in_one_dimension() {
         let mut bytes: Vec<u8> = (0..4 * 2 * 3 * 2).map(|i| (i * 37 + 11) as u8).collect();
         let a = tile(Vec::leak(bytes.clone()));
         bytes[2 * (1 + 4)] ^= 0x5a; // pixel (1, 1), dimension 0
-        let b = tile(Vec::leak(bytes));
+        let b = tile(Vec::leak(bytes.clone()));
         for y in 0..2 {
             for x in 0..4 {
                 for d in 0..3 {
                     for i in 0..8 {
                         let same = a.sample_bits(x, y, 2, i, d) == b.sample_bits(x, y, 2, i, d);
-                        assert_eq!(same, !((x, y) == (1, 1) && d < 2), "({x}, {y}) d {d} i {i}");
+                        assert_eq!(
+                            same,
+                            !((x, y) == (1, 1) && d == 0),
+                            "({x}, {y}) d {d} i {i}"
+                        );
                     }
                 }
             }
         }
+        let key =
+            |d: usize| u16::from_le_bytes([bytes[2 * (7 + 8 * d)], bytes[2 * (7 + 8 * d) + 1]]);
+        for (frame, i, d) in [(0u32, 0u32, 0u32), (5, 3, 1), (u32::MAX, 7, 2)] {
+            let n = frame.wrapping_mul(8).wrapping_add(i);
+            let want = n
+                .wrapping_mul(TILE_STEPS[2][d as usize])
+                .wrapping_add((key(d as usize) as u32) << 16);
+            assert_eq!(b.sample_bits(3, 1, frame, i, d), want);
+            assert_eq!(b.sample_bits(-1, -1, frame, i, d), want);
+            assert_eq!(b.sample_bits(3, 1, frame, i + 8, d + 3), want);
+        }
     }
 
-    /// Whether `pts` hold one point in each of the `len` elementary intervals of every shape:
-    /// a (0, m, 2)-net.
-    fn is_net(pts: &[[u32; 2]]) -> bool {
-        let m = pts.len().trailing_zeros();
-        assert_eq!(pts.len(), 1 << m);
-        (0..=m).all(|lx| {
-            let ly = m - lx;
-            let mut seen = std::vec![false; pts.len()];
-            pts.iter().all(|p| {
-                let cx = if lx == 0 { 0 } else { p[0] >> (32 - lx) };
-                let cy = if ly == 0 { 0 } else { p[1] >> (32 - ly) };
-                let cell = (cx << ly | cy) as usize;
-                !std::mem::replace(&mut seen[cell], true)
-            })
-        })
-    }
-
-    fn points(key: u32, frames: core::ops::Range<u32>, spp: u32, pair: u32) -> Vec<[u32; 2]> {
-        frames
-            .flat_map(|f| {
-                (0..spp).map(move |i| {
-                    let index = tile_index(key, f, i, spp);
-                    [tile_value(index, pair, 0), tile_value(index, pair, 1)]
-                })
-            })
-            .collect()
-    }
-
-    /// Whatever the key, a pixel's samples of one frame are a (0, m, 2)-net, its frames
-    /// `0 … 2^j − 1` together one of `2^j` times as many points, and two pixels whose keys differ
-    /// in the lowest bit hold a net together (so do four whose keys differ in the lowest two).
+    /// A pixel's samples over frames are one low-discrepancy sequence: 256 of them in the
+    /// 16 × 16 cells of a pair leave under a quarter of the cells empty and pile at most 4 in
+    /// one (random points leave about 37 % empty); and frame f is frame 0 moved by f·SPP·α.
     #[test]
-    fn every_key_gives_nets_over_samples_frames_and_siblings() {
-        for key in [0u32, 1, 0xdead_beef, u32::MAX, 0x8000_0000, 0x1234] {
-            for spp in [1u32, 2, 4, 16] {
-                for pair in 0..3 {
-                    assert!(is_net(&points(key, 0..1, spp, pair)), "{key:#x} spp {spp}");
-                    assert!(is_net(&points(key, 3..4, spp, pair)), "{key:#x} spp {spp}");
-                    assert!(is_net(&points(key, 0..4, spp, pair)), "{key:#x} spp {spp}");
-                    assert!(is_net(&points(key, 8..16, spp, pair)), "{key:#x} spp {spp}");
-                    let mut two = points(key, 5..6, spp, pair);
-                    two.extend(points(key ^ 1, 5..6, spp, pair));
-                    assert!(is_net(&two), "{key:#x} spp {spp}: siblings");
-                    let four: Vec<[u32; 2]> = (0..4)
-                        .flat_map(|s| points(key ^ s, 2..3, spp, pair))
-                        .collect();
-                    assert!(is_net(&four), "{key:#x} spp {spp}: four siblings");
-                }
+    fn a_pixels_frames_continue_one_sequence() {
+        let bytes: Vec<u8> = (0..4 * 2 * 3 * 2).map(|i| (i * 91 + 3) as u8).collect();
+        let t = tile(Vec::leak(bytes));
+        let mut cells = [0u8; 256];
+        for f in 0..32 {
+            for i in 0..8 {
+                let [u, v] = t.sample2(2, 1, f, i, 0);
+                cells[(u * 16.0) as usize * 16 + (v * 16.0) as usize] += 1;
             }
         }
-        // Keys that differ in a high bit only do not stratify together: the property is the
-        // low bits', which is what the generator arranges.
-        let mut far = points(0, 0..1, 4, 0);
-        far.extend(points(1 << 12, 0..1, 4, 0));
-        assert!(!is_net(&far));
-        // A non-power-of-two spp takes the first spp points of a block of the next power of two.
-        assert_eq!(tile_index(5, 0, 2, 3), 5 * 4 + 2);
-        assert_eq!(tile_index(5, 2, 0, 3), 7 * 4);
+        let empty = cells.iter().filter(|&&c| c == 0).count();
+        assert!(empty < 64, "{empty} empty cells");
+        assert!(cells.iter().all(|&c| c <= 4), "{cells:?}");
+        for d in 0..3 {
+            let moved = 5u32.wrapping_mul(8).wrapping_mul(TILE_STEPS[2][d as usize]);
+            assert_eq!(
+                t.sample_bits(1, 0, 5, 2, d),
+                t.sample_bits(1, 0, 0, 2, d).wrapping_add(moved)
+            );
+        }
     }
 
-    /// The view reads the right layers: a pair's key is its first layer plus 2^16 times its
-    /// second, a lone last dimension's its one layer; coordinates wrap; `sample2` is two
-    /// `sample`s; pairs are scrambled apart.
+    /// The warps read the pair they name: dimensions 0–1 for pair 0, through the polar maps.
     #[test]
-    fn the_view_reads_keys_by_pair() {
-        let mut bytes: Vec<u8> = (0..4 * 2 * 3 * 2).map(|i| (i * 91 + 3) as u8).collect();
-        bytes[0] = 7;
-        let key = |b: &[u8], layer: usize| {
-            u16::from_le_bytes([b[2 * (7 + 8 * layer)], b[2 * (7 + 8 * layer) + 1]]) as u32
-        };
-        let pair = key(&bytes, 0) | key(&bytes, 1) << 16;
-        let lone = key(&bytes, 2);
+    fn warps_read_their_pair() {
+        let bytes: Vec<u8> = (0..4 * 2 * 3 * 2).map(|i| (i * 53 + 1) as u8).collect();
         let t = tile(Vec::leak(bytes));
-        // Pixel (3, 1), frame 2, sample 5: point 5 of block pair ^ 2, 8 points long.
+        let [u, v] = t.sample2(1, 1, 3, 2, 0);
         assert_eq!(
-            t.sample_bits(3, 1, 2, 5, 1),
-            tile_value(((pair ^ 2) << 3) | 5, 0, 1)
+            t.cosine_hemisphere(1, 1, 3, 2, 0),
+            warp::cosine_hemisphere_polar(u, v)
         );
+        assert_eq!(t.disk(1, 1, 3, 2, 0), warp::disk_polar(u, v));
+        let d = t.cosine_hemisphere(1, 1, 3, 2, 0);
+        assert!((d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - 1.0).abs() < 1e-5);
+        // The lone last dimension pairs with dimension 0.
         assert_eq!(
-            t.sample_bits(3, 1, 2, 13, 2),
-            tile_value(((lone ^ 2) << 3) | 5, 1, 0)
+            t.sample2(0, 0, 1, 1, 2),
+            [t.sample(0, 0, 1, 1, 2), t.sample(0, 0, 1, 1, 0)]
         );
-        assert_eq!(t.sample_bits(-1, -1, 1, 0, 2), t.sample_bits(3, 1, 1, 0, 2));
-        assert_eq!(
-            t.sample2(2, 0, 3, 1, 0),
-            [t.sample(2, 0, 3, 1, 0), t.sample(2, 0, 3, 1, 1)]
-        );
-        assert_eq!(t.sample2(2, 0, 3, 1, 2), [t.sample(2, 0, 3, 1, 2), 0.0]);
-        assert_ne!(tile_value(77, 0, 0), tile_value(77, 1, 0));
     }
 }

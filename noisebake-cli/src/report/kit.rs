@@ -89,6 +89,15 @@ pub(crate) fn bake(
     s: &TextureSpec,
     log: &mut dyn FnMut(&str),
 ) -> Result<(Vec<f64>, f64, bool), String> {
+    let (t, secs, cached) = bake_texture(s, log)?;
+    Ok((t.values(), secs, cached))
+}
+
+/// Bakes `s` through the workspace cache; `(texture, seconds, cached)`.
+pub(crate) fn bake_texture(
+    s: &TextureSpec,
+    log: &mut dyn FnMut(&str),
+) -> Result<(build_assets::Texture, f64, bool), String> {
     let mut cache = Locator {
         manifest_dir: Some(Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()),
         ..Locator::default()
@@ -110,7 +119,7 @@ pub(crate) fn bake(
     } else {
         start.elapsed().as_secs_f64()
     };
-    Ok((e.texture.values(), secs, cached))
+    Ok((e.texture, secs, cached))
 }
 
 /// EA's published scalar texture's filter: Gaussian σ 1.3435 × EMA (α 0.1) with history

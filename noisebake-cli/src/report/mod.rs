@@ -6,6 +6,8 @@ pub mod cnj;
 pub mod compare;
 pub mod fast;
 pub mod kit;
+#[cfg(feature = "render")]
+pub mod render;
 pub mod sampler;
 pub mod stochastic;
 pub mod taa;

@@ -174,8 +174,9 @@ RMSE of the per-pixel mean of spp samples of 256 half-planes (visibility edges) 
   apart. `tile (F)`: a sampler tile baked for that spp and filter F (kind `sampler`,
   sample_dims 4). bytes: what a game ships (0: computed in the shader).";
 
-/// A baked tile's lookup through the runtime's view for `spp` (the view's `SPP` sets the
-/// blocks' length, so it must be the one the tile was baked for), in frame 0.
+/// A baked tile's lookup through the runtime's view for `spp` (the view's `SPP` sets which
+/// points a frame takes, so it must be the one the tile was baked for), in frame 0; the
+/// tiles here are `square` in every pair, so every pair runs Sobol.
 pub fn tile_lookup(keys: Vec<u16>, spp: u32) -> Box<dyn Fn(i32, i32, u32, u32) -> f32 + Sync> {
     use noise_runtime::{Mask3, SamplerTile};
     let bytes: &'static [u8] = Vec::leak(keys.iter().flat_map(|k| k.to_le_bytes()).collect());
@@ -183,7 +184,7 @@ pub fn tile_lookup(keys: Vec<u16>, spp: u32) -> Box<dyn Fn(i32, i32, u32, u32) -
         ($($spp:literal)*) => {
             match spp {
                 $($spp => {
-                    let t = SamplerTile::<128, 128, $spp, 4>::new(Mask3::new(bytes));
+                    let t = SamplerTile::<128, 128, $spp, 4>::new(Mask3::new(bytes), 0b11);
                     Box::new(move |x, y, i, d| t.sample(x, y, 0, i, d))
                 })*
                 _ => panic!("no view for {spp} spp"),
@@ -198,7 +199,9 @@ pub fn bake(spp: u32, spatial: Filter, seed: u64) -> (Vec<u16>, f64) {
     let p = SamplerParams {
         spp,
         sample_dims: SAMPLE_DIMS,
+        sample_space: vec![build_assets::spec::sampler::PairSpace::Square; 2],
         spatial,
+        temporal: build_assets::spec::fast::TemporalFilter::None,
         frames: 1,
     };
     let t = Instant::now();

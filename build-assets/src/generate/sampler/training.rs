@@ -1,43 +1,258 @@
-//! What the sampler optimiser trains on: random half-planes (the visibility edges of occlusion
-//! and shadows), and the table of every candidate block's hits on them.
+//! What the sampler optimiser trains on: integrands in the space the ray uses, and every
+//! pixel's error on each of them for the shift it holds.
+//!
+//! - `square`: random half-planes of the unit square (the visibility edge an occluder casts
+//!   over an area light);
+//! - `cosine_hemisphere`: random half-spaces of directions `[a · ω < c]` through the polar warp
+//!   (an occluder's plane cutting the hemisphere of ambient occlusion or a bounce);
+//! - `disk`: random half-planes of the unit disk through the polar warp;
+//! - a lone dimension: random thresholds `[u < c]`.
+//!
+//! Each integrand also gets a random offset of the torus: frame `f` of a tile is frame 0 with
+//! every shift moved by `f · spp · α`, so an integrand met at a random offset stands for every
+//! frame at once. A pixel's error on integrand `k` is its estimate there less the mean over the
+//! tile's pixels (the pixels' shifts, the start's, are a stratified set, so the mean is the
+//! integral to a fraction of the errors; the loss is blind to a constant anyway).
 
 use crate::generate::rng::SplitMix64;
-use noise_runtime::sampler::{tile_index, tile_value};
-use noise_runtime::sequence::to_unit;
+use crate::spec::sampler::PairSpace;
+use noise_runtime::sampler::tile_point;
+use rayon::prelude::*;
 
-/// One training integrand: the indicator of `a·u + b·v < c` over the unit square (or of
-/// `u < c` for a lone dimension), and its exact integral.
+/// One training integrand, in the pair's own unit square.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Edge {
-    a: f64,
-    b: f64,
-    c: f64,
-    pub(super) integral: f64,
+enum Shape {
+    /// `a·u + b·v < c` (square), or of the warped disk point (disk).
+    Edge { a: f32, b: f32, c: f32, disk: bool },
+    /// `a · ω(u, v) < c` for the cosine-weighted direction `ω`.
+    Directions { a: [f32; 3], c: f32 },
+    /// `u < c` (a lone dimension).
+    Threshold { c: f32 },
 }
 
-impl Edge {
-    pub(super) fn random(rng: &mut SplitMix64, axes: usize) -> Edge {
-        if axes == 1 {
-            let c = rng.unit_f64();
-            return Edge {
-                a: 1.0,
-                b: 0.0,
-                c,
-                integral: c,
-            };
+/// Integrands with their offsets.
+pub(super) struct Integrands {
+    shapes: Vec<Shape>,
+    offsets: Vec<[u32; 2]>,
+    tables: Warp,
+}
+
+/// The polar warp's factors at 2^16 steps of `u` and of `v` (`√u`, `√(1 − u)`, `cos 2πv`,
+/// `sin 2πv`), through the runtime's own square root and sine so every machine computes the same
+/// bits: a point's 32-bit fraction indexes them by its top 16 bits.
+struct Warp {
+    r: Vec<f32>,
+    z: Vec<f32>,
+    cos: Vec<f32>,
+    sin: Vec<f32>,
+}
+
+impl Warp {
+    fn new() -> Warp {
+        let n = 1usize << 16;
+        let mid = |i: usize| (i as f32 + 0.5) / n as f32;
+        Warp {
+            r: (0..n).map(|i| noise_runtime::math::sqrt(mid(i))).collect(),
+            z: (0..n)
+                .map(|i| noise_runtime::math::sqrt(1.0 - mid(i)))
+                .collect(),
+            cos: (0..n)
+                .map(|i| noise_runtime::math::sincos_turns(mid(i)).1)
+                .collect(),
+            sin: (0..n)
+                .map(|i| noise_runtime::math::sincos_turns(mid(i)).0)
+                .collect(),
         }
-        let [a, b, c] = random_edge(rng);
-        Edge {
-            a,
-            b,
-            c,
-            integral: half_plane_area(a, b, c),
+    }
+}
+
+/// A random unit vector (rejection from the cube, so no transcendental decides a bit).
+fn unit3(rng: &mut SplitMix64) -> [f32; 3] {
+    loop {
+        let v = [
+            2.0 * rng.unit_f64() - 1.0,
+            2.0 * rng.unit_f64() - 1.0,
+            2.0 * rng.unit_f64() - 1.0,
+        ];
+        let r2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        if r2 > 1e-4 && r2 <= 1.0 {
+            let r = r2.sqrt();
+            return v.map(|x| (x / r) as f32);
+        }
+    }
+}
+
+impl Integrands {
+    /// `count` integrands of `space` (`axes` 1 for a lone dimension), from `rng`.
+    pub fn new(space: PairSpace, axes: usize, count: usize, rng: &mut SplitMix64) -> Integrands {
+        let mut shapes = Vec::with_capacity(count);
+        let mut offsets = Vec::with_capacity(count);
+        for _ in 0..count {
+            let shape = if axes == 1 {
+                Shape::Threshold {
+                    c: rng.unit_f64() as f32,
+                }
+            } else {
+                match space {
+                    PairSpace::Square => {
+                        let [a, b, c] = random_edge(rng);
+                        Shape::Edge {
+                            a: a as f32,
+                            b: b as f32,
+                            c: c as f32,
+                            disk: false,
+                        }
+                    }
+                    PairSpace::Disk => {
+                        // A line through a uniform point of the disk's bounding square.
+                        let [a, b, c] = random_edge(rng);
+                        Shape::Edge {
+                            a: a as f32,
+                            b: b as f32,
+                            c: (2.0 * c - a - b) as f32,
+                            disk: true,
+                        }
+                    }
+                    PairSpace::CosineHemisphere => Shape::Directions {
+                        a: unit3(rng),
+                        c: (rng.unit_f64() - 0.5) as f32,
+                    },
+                }
+            };
+            shapes.push(shape);
+            offsets.push([rng.next_u64() as u32, rng.next_u64() as u32]);
+        }
+        Integrands {
+            shapes,
+            offsets,
+            tables: Warp::new(),
         }
     }
 
+    /// Integrands.
+    pub fn len(&self) -> usize {
+        self.shapes.len()
+    }
+
+    /// Whether the point of 32-bit fractions `(u, v)` is inside integrand `k`.
+    #[inline(always)]
+    fn inside(&self, k: usize, u: u32, v: u32) -> bool {
+        let w = &self.tables;
+        match self.shapes[k] {
+            Shape::Edge { a, b, c, disk } => {
+                let (x, y) = if disk {
+                    let (r, iv) = (w.r[(u >> 16) as usize], (v >> 16) as usize);
+                    (r * w.cos[iv], r * w.sin[iv])
+                } else {
+                    (
+                        noise_runtime::sequence::to_unit(u),
+                        noise_runtime::sequence::to_unit(v),
+                    )
+                };
+                a * x + b * y < c
+            }
+            Shape::Directions { a, c } => {
+                let (iu, iv) = ((u >> 16) as usize, (v >> 16) as usize);
+                let r = w.r[iu];
+                r * (a[0] * w.cos[iv] + a[1] * w.sin[iv]) + a[2] * w.z[iu] < c
+            }
+            Shape::Threshold { c } => noise_runtime::sequence::to_unit(u) < c,
+        }
+    }
+}
+
+/// Every pixel's errors, row by row (`len` values a pixel), for the shifts it holds.
+pub(super) struct Errors {
+    /// Values per pixel: one per integrand.
+    pub len: usize,
+    /// `pixels × len`.
+    pub values: Vec<f32>,
+}
+
+/// How a pixel's samples are weighed into its error: the sample indices `n` of the sequence
+/// (relative to the newest frame's first) and their weights. One frame: `n = 0 … spp − 1`,
+/// each `1/spp`. Under an EMA of weight `α` over `frames` frames, frame `j` back holds `n =
+/// −j·spp … −j·spp + spp − 1` with weight `α(1 − α)^j / spp`, normalised to sum to 1.
+pub(super) fn sample_weights(spp: u32, ema: Option<(f64, u32)>) -> Vec<(u32, f32)> {
+    match ema {
+        None => (0..spp).map(|i| (i, 1.0 / spp as f32)).collect(),
+        Some((alpha, frames)) => {
+            let w: Vec<f64> = (0..frames)
+                .map(|j| alpha * (1.0 - alpha).powi(j as i32))
+                .collect();
+            let total: f64 = w.iter().sum();
+            (0..frames)
+                .flat_map(|j| {
+                    let wj = (w[j as usize] / total / spp as f64) as f32;
+                    (0..spp).map(move |i| (i.wrapping_sub(j * spp), wj))
+                })
+                .collect()
+        }
+    }
+}
+
+impl Errors {
+    /// The errors of pixels holding `shifts` (per pixel, the pair's two 16-bit shifts; the
+    /// second unused for a lone dimension), for the pair whose dimensions are `dims` of a
+    /// `total`-dimensional tile, weighing samples by `weights` ([`sample_weights`]).
+    pub fn new(
+        ints: &Integrands,
+        shifts: &[[u16; 2]],
+        dims: [u32; 2],
+        total: u32,
+        sobol_pairs: u8,
+        weights: &[(u32, f32)],
+    ) -> Errors {
+        // An integrand's offset moves the points as the pair's structure moves frames: added
+        // for the lattice, XORed for Sobol (frame f is frame 0 so moved, for every pixel).
+        let sobol = sobol_pairs >> (dims[0] / 2) & 1 == 1;
+        let point = move |n: u32, d: u32, key: u16, o: u32| {
+            let x = tile_point(n, d, total, key, sobol_pairs);
+            if sobol { x ^ o } else { x.wrapping_add(o) }
+        };
+        let len = ints.len();
+        let mut values: Vec<f32> = shifts
+            .par_iter()
+            .flat_map_iter(|s| {
+                (0..len).map(move |k| {
+                    let o = ints.offsets[k];
+                    let mut est = 0.0f32;
+                    for &(n, w) in weights {
+                        let u = point(n, dims[0], s[0], o[0]);
+                        let v = point(n, dims[1], s[1], o[1]);
+                        if ints.inside(k, u, v) {
+                            est += w;
+                        }
+                    }
+                    est
+                })
+            })
+            .collect();
+        // Each integrand's mean over the pixels is its integral's estimate: subtract it.
+        let pixels = shifts.len();
+        for k in 0..len {
+            let mean = (0..pixels).map(|p| values[p * len + k] as f64).sum::<f64>() / pixels as f64;
+            for p in 0..pixels {
+                values[p * len + k] -= mean as f32;
+            }
+        }
+        Errors { len, values }
+    }
+
+    /// Pixel `p`'s row.
     #[inline]
-    fn inside(&self, u: f64, v: f64) -> bool {
-        self.a * u + self.b * v < self.c
+    pub fn row(&self, p: usize) -> &[f32] {
+        &self.values[p * self.len..(p + 1) * self.len]
+    }
+
+    /// Swaps the rows of pixels `p` and `q`.
+    pub fn swap(&mut self, p: usize, q: usize) {
+        if p == q {
+            return;
+        }
+        let (a, b) = (p.min(q), p.max(q));
+        let (head, tail) = self.values.split_at_mut(b * self.len);
+        head[a * self.len..(a + 1) * self.len].swap_with_slice(&mut tail[..self.len]);
     }
 }
 
@@ -84,148 +299,75 @@ pub fn half_plane_area(a: f64, b: f64, c: f64) -> f64 {
     (twice / 2.0).abs()
 }
 
-/// Every candidate block's hits on the training integrands.
-///
-/// Frame `f` of a pixel holding block `b` samples block `b ^ f`, and is scored on its own slice
-/// of the integrands, `[f·per_frame, (f + 1)·per_frame)`. So a pixel's error vector over all
-/// `frames · per_frame` values is `hits[b ^ f][t] / spp − integral[t]` on slice `f`: the table
-/// holds one row of hits per block, and a pixel's vector is gathered from `frames` rows.
-pub(super) struct Table {
-    /// Training values per pixel: `frames · per_frame`.
-    pub len: usize,
-    pub per_frame: usize,
-    pub frames: usize,
-    /// `blocks × len` hit counts (at most 64, the largest spp).
-    hits: Vec<u8>,
-    /// `1 / spp`.
-    pub scale: f32,
-    /// The integrals, one per training value.
-    pub integral: Vec<f32>,
-}
-
-impl Table {
-    /// Samples every one of `blocks` blocks (a power of two at least the frames, so `b ^ f`
-    /// stays in the pool) of pair `pair` (`axes` 2, or 1 for a lone dimension) and counts its
-    /// samples inside each integrand of each frame's slice.
-    pub fn build(
-        edges: &[Edge],
-        blocks: usize,
-        frames: usize,
-        spp: u32,
-        pair: u32,
-        axes: usize,
-    ) -> Table {
-        let len = edges.len();
-        let per_frame = len / frames;
-        let mut hits = vec![0u8; blocks * len];
-        let mut pts = Vec::with_capacity(spp as usize);
-        for (b, row) in hits.chunks_exact_mut(len).enumerate() {
-            pts.clear();
-            pts.extend((0..spp).map(|i| {
-                let index = tile_index(b as u32, 0, i, spp);
-                let u = to_unit(tile_value(index, pair, 0)) as f64;
-                let v = if axes == 2 {
-                    to_unit(tile_value(index, pair, 1)) as f64
-                } else {
-                    0.0
-                };
-                (u, v)
-            }));
-            for (h, e) in row.iter_mut().zip(edges) {
-                *h = pts.iter().filter(|&&(u, v)| e.inside(u, v)).count() as u8;
-            }
-        }
-        Table {
-            len,
-            per_frame,
-            frames,
-            hits,
-            scale: 1.0 / spp as f32,
-            integral: edges.iter().map(|e| e.integral as f32).collect(),
-        }
-    }
-
-    /// The hits of block `b` on the integrands of frame `f`'s slice.
-    #[inline]
-    pub fn slice(&self, b: usize, f: usize) -> &[u8] {
-        let o = b * self.len + f * self.per_frame;
-        &self.hits[o..o + self.per_frame]
-    }
-
-    /// Asks the processor to bring the rows a pixel holding block `b` reads into its caches
-    /// (the optimiser scores candidates from random rows of a table far larger than the caches,
-    /// and waited on memory: `perf`). A hint only: it changes no value.
-    #[inline]
-    pub fn prefetch(&self, b: usize) {
-        #[cfg(target_arch = "x86_64")]
-        for f in 0..self.frames {
-            for line in self.slice(b ^ f, f).chunks(64) {
-                // SAFETY: SSE is part of the x86_64 baseline, and a prefetch reads nothing.
-                unsafe {
-                    core::arch::x86_64::_mm_prefetch::<{ core::arch::x86_64::_MM_HINT_T0 }>(
-                        line.as_ptr() as *const i8,
-                    )
-                };
-            }
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = b;
-    }
-
-    /// The error vector of a pixel holding block `b`, written into `out` (`len` values).
-    pub fn errors(&self, b: usize, out: &mut [f32]) {
-        for f in 0..self.frames {
-            let range = f * self.per_frame..(f + 1) * self.per_frame;
-            let hits = self.slice(b ^ f, f);
-            for ((o, &h), &i) in out[range.clone()]
-                .iter_mut()
-                .zip(hits)
-                .zip(&self.integral[range])
-            {
-                *o = h as f32 * self.scale - i;
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    /// The half-plane area against a Monte Carlo count.
     #[test]
-    fn half_plane_areas_are_exact() {
-        assert!((half_plane_area(1.0, 0.0, 0.25) - 0.25).abs() < 1e-15);
-        assert!((half_plane_area(0.0, -1.0, -0.75) - 0.25).abs() < 1e-15);
-        let s = std::f64::consts::FRAC_1_SQRT_2;
-        // x + y < 1: half of the square; x + y < 0.5: a triangle of area 1/8.
-        assert!((half_plane_area(s, s, s) - 0.5).abs() < 1e-12);
-        assert!((half_plane_area(s, s, 0.5 * s) - 0.125).abs() < 1e-12);
-        assert_eq!(half_plane_area(1.0, 0.0, -1.0), 0.0);
-        assert!((half_plane_area(1.0, 0.0, 2.0) - 1.0).abs() < 1e-15);
-    }
-
-    /// A pixel's error vector takes frame `f`'s slice from block `b ^ f`, and a block's hits
-    /// are its samples' inside counts.
-    #[test]
-    fn error_vectors_gather_each_frame_from_its_block() {
-        let mut rng = SplitMix64::new(3);
-        let edges: Vec<Edge> = (0..64).map(|_| Edge::random(&mut rng, 2)).collect();
-        let t = Table::build(&edges, 16, 2, 4, 0, 2);
-        let mut e = vec![0.0; 64];
-        t.errors(5, &mut e);
-        for k in 0..64 {
-            let (f, b) = if k < 32 { (0, 5) } else { (1, 4) };
-            let inside = (0..4)
-                .filter(|&i| {
-                    let index = tile_index(b, 0, i, 4);
-                    let u = to_unit(tile_value(index, 0, 0)) as f64;
-                    let v = to_unit(tile_value(index, 0, 1)) as f64;
-                    edges[k].inside(u, v)
+    fn half_plane_areas_match_a_count() {
+        let mut rng = SplitMix64::new(5);
+        for _ in 0..20 {
+            let [a, b, c] = random_edge(&mut rng);
+            let n = 400;
+            let inside = (0..n * n)
+                .filter(|i| {
+                    let (u, v) = (
+                        (i % n) as f64 / n as f64 + 0.5 / n as f64,
+                        (i / n) as f64 / n as f64 + 0.5 / n as f64,
+                    );
+                    a * u + b * v < c
                 })
                 .count();
-            assert_eq!(t.slice(b as usize, f)[k - 32 * f] as usize, inside);
-            let want = inside as f32 / 4.0 - edges[k].integral as f32;
-            assert_eq!(e[k], want, "value {k}");
+            let got = half_plane_area(a, b, c);
+            assert!((got - inside as f64 / (n * n) as f64).abs() < 5e-3, "{got}");
+        }
+    }
+
+    /// The EMA's weights sum to one, reach back `frames` frames of `spp` samples, and the
+    /// newest frame weighs most.
+    #[test]
+    fn ema_weights_reach_back_and_sum_to_one() {
+        let w = sample_weights(4, Some((0.1, 8)));
+        assert_eq!(w.len(), 32);
+        let sum: f32 = w.iter().map(|x| x.1).sum();
+        assert!((sum - 1.0).abs() < 1e-5);
+        assert_eq!(w[0].0, 0);
+        assert_eq!(w[4].0, 0u32.wrapping_sub(4));
+        assert!(w[0].1 > w[4].1);
+        let one = sample_weights(4, None);
+        assert_eq!(one, vec![(0, 0.25), (1, 0.25), (2, 0.25), (3, 0.25)]);
+    }
+
+    /// Errors are centred per integrand, and a pixel's error depends on its own shift only,
+    /// for the lattice and for Sobol.
+    #[test]
+    fn errors_are_centred_and_follow_the_shift() {
+        let mut rng = SplitMix64::new(9);
+        for (space, sp) in [
+            (PairSpace::Square, 1u8),
+            (PairSpace::Square, 0),
+            (PairSpace::CosineHemisphere, 0),
+            (PairSpace::Disk, 0),
+        ] {
+            let ints = Integrands::new(space, 2, 16, &mut rng);
+            let shifts: Vec<[u16; 2]> = (0..64u32)
+                .map(|i| [(i * 1021) as u16, (i * 40_503) as u16])
+                .collect();
+            let w = sample_weights(4, None);
+            let e = Errors::new(&ints, &shifts, [0, 1], 4, sp, &w);
+            for k in 0..16 {
+                let s: f32 = (0..64).map(|p| e.row(p)[k]).sum();
+                assert!(s.abs() < 1e-3, "{space:?} {k}: {s}");
+            }
+            let mut swapped = shifts.clone();
+            swapped.swap(3, 10);
+            let f = Errors::new(&ints, &swapped, [0, 1], 4, sp, &w);
+            assert_eq!(e.row(3), f.row(10));
+            assert_eq!(e.row(10), f.row(3));
+            let mut g = Errors::new(&ints, &shifts, [0, 1], 4, sp, &w);
+            g.swap(3, 10);
+            assert_eq!(g.values, f.values);
         }
     }
 }

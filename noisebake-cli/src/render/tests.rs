@@ -1,0 +1,177 @@
+//! The tracer against integrals known in closed form, the à-trous weights' symmetry and
+//! normalisation, and the reference's standard error against what independent references say.
+
+use super::denoise::{Denoiser, Filter, atrous_weight, depth_gradient};
+use super::scene::{AreaLight, Camera, Scene, Tri};
+use super::trace::Tracer;
+use super::{GBuffer, shade};
+use glam::Vec3;
+
+/// A scene of `triangles` with a light `a × b` at height `c` whose corner is straight above
+/// the origin, AO reaching `radius`.
+fn scene(triangles: Vec<Tri>, radius: f32, (a, b, c): (f32, f32, f32)) -> Scene {
+    Scene {
+        name: "test".into(),
+        triangles,
+        camera: Camera {
+            eye: Vec3::new(0.0, 5.0, 5.0),
+            target: Vec3::ZERO,
+            fov_y: 1.0,
+        },
+        light: AreaLight {
+            corner: Vec3::new(0.0, c, 0.0),
+            edges: [Vec3::new(a, 0.0, 0.0), Vec3::new(0.0, 0.0, b)],
+            radiance: 1.0,
+        },
+        ao_radius: radius,
+        albedo: 0.5,
+        sky: 0.8,
+    }
+}
+
+/// The floor y = 0, `half` on each side of the origin.
+fn floor(half: f32) -> Vec<Tri> {
+    let v = |x, z| Vec3::new(x, 0.0, z);
+    vec![
+        [v(-half, -half), v(-half, half), v(half, half)],
+        [v(-half, -half), v(half, half), v(half, -half)],
+    ]
+}
+
+/// The mean of the three estimates over an `n × n` grid of samples (dims 0–1 and 2–3 each
+/// on the grid, in two different orders so the pairs are not one function of the other).
+fn mean_shading(s: &Scene, t: &Tracer, p: Vec3, n: usize) -> [f64; 3] {
+    let mut sum = [0.0f64; 3];
+    for i in 0..n {
+        for j in 0..n {
+            let u = (i as f32 + 0.5) / n as f32;
+            let v = (j as f32 + 0.5) / n as f32;
+            let (e, _) = shade(s, t, p, Vec3::Y, [u, v, v, u]);
+            for c in 0..3 {
+                sum[c] += e[c] as f64;
+            }
+        }
+    }
+    sum.map(|x| x / (n * n) as f64)
+}
+
+/// The form factor from a point to a parallel `a × b` rectangle at height `c` whose corner is
+/// straight above it (Howell's catalogue, C-11).
+fn corner_form_factor(a: f64, b: f64, c: f64) -> f64 {
+    let (x, y) = (a / c, b / c);
+    let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
+    (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * std::f64::consts::PI)
+}
+
+/// An open plane: nothing occludes (AO 1 from every direction, the bounce escapes to the sky),
+/// and the shadow estimate converges to the light's form factor.
+#[test]
+fn an_open_plane_sees_the_sky_and_the_lights_form_factor() {
+    let (a, b, c) = (1.2f32, 0.7f32, 1.5f32);
+    let s = scene(floor(50.0), 1.0, (a, b, c));
+    let t = Tracer::new(&s.triangles);
+    let p = Vec3::new(0.0, 1e-4, 0.0);
+    let m = mean_shading(&s, &t, p, 128);
+    assert_eq!(m[0], 1.0, "AO");
+    assert!(
+        (m[2] - (s.albedo * s.sky) as f64).abs() < 1e-6,
+        "bounce {}",
+        m[2]
+    );
+    let want = corner_form_factor(a as f64, b as f64, c as f64);
+    assert!(
+        (m[1] / want - 1.0).abs() < 2e-3,
+        "shadow {} vs {want}",
+        m[1]
+    );
+    // Beside the light's corner the estimate is not the corner's value: the test can fail.
+    let off = mean_shading(&s, &t, Vec3::new(-1.0, 1e-4, -1.0), 64);
+    assert!((off[1] / want - 1.0).abs() > 0.1, "{}", off[1]);
+}
+
+/// A point on the floor `d` from an infinitely wide wall of height `h` (and no AO radius):
+/// the wall covers a cosine-weighted share `(1 − d/√(d² + h²))/2` of the hemisphere, so AO is
+/// one minus that; at the crease (`d → 0`) it is ½.
+#[test]
+fn ao_beside_a_wall_and_in_a_crease_is_the_analytic_value() {
+    let (h, half) = (1.0f32, 400.0f32);
+    let mut tris = floor(half);
+    let v = |x, y| Vec3::new(x, y, 0.0);
+    tris.push([v(-half, 0.0), v(half, 0.0), v(half, h)]);
+    tris.push([v(-half, 0.0), v(half, h), v(-half, h)]);
+    let s = scene(tris, 1e6, (0.1, 0.1, 50.0));
+    let t = Tracer::new(&s.triangles);
+    for d in [0.002f32, 0.3, 1.0, 2.5] {
+        let ao = mean_shading(&s, &t, Vec3::new(0.0, 1e-4, d), 256)[0];
+        let dd = d as f64;
+        let want = 1.0 - (1.0 - dd / (dd * dd + 1.0).sqrt()) / 2.0;
+        assert!((ao - want).abs() < 4e-3, "d {d}: {ao} vs {want}");
+    }
+    // With a radius shorter than the wall's distance, nothing occludes.
+    let near = scene(s.triangles.clone(), 0.5, (0.1, 0.1, 50.0));
+    let ao = mean_shading(&near, &t, Vec3::new(0.0, 1e-4, 0.6), 64)[0];
+    assert_eq!(ao, 1.0);
+}
+
+/// The à-trous weights, before normalisation, are symmetric in the two pixels, and each
+/// pixel's normalised weights sum to one; they stop at the room's edges (some weight below
+/// the kernel's own).
+#[test]
+fn atrous_weights_are_symmetric_and_normalised() {
+    let s = Scene::room();
+    let t = Tracer::new(&s.triangles);
+    let g = GBuffer::new(&s, &t, 40, 30, [0, 0]);
+    let grad = depth_gradient(&g);
+    let mut stopped = 0;
+    for p in (0..g.width * g.height).step_by(7) {
+        for q in (0..g.width * g.height).step_by(11) {
+            let a = atrous_weight(&g, &grad, p, q, 2.0, 0.1);
+            let b = atrous_weight(&g, &grad, q, p, 2.0, 0.1);
+            assert_eq!(a, b, "{p} {q}");
+            stopped += usize::from(a < 0.05);
+        }
+    }
+    assert!(stopped > 0);
+    let f = Filter::new(Denoiser::Atrous { passes: 3 }, &g);
+    for pass in 0..3 {
+        for p in 0..g.width * g.height {
+            let sum: f32 = f.atrous_row(pass, p).unwrap().iter().sum();
+            assert!((sum - 1.0).abs() < 1e-5, "pass {pass} pixel {p}: {sum}");
+        }
+    }
+    // A constant image stays constant.
+    let one = vec![1.0f32; g.width * g.height];
+    assert!(f.apply(&one).iter().all(|v| (v - 1.0).abs() < 1e-5));
+}
+
+/// The reference's standard error is what independent references say: two references from
+/// disjoint seeds differ by about √2 times it.
+#[test]
+fn the_references_standard_error_matches_independent_references() {
+    use crate::report::render::{reference, standard_error};
+    let s = Scene::room();
+    let t = Tracer::new(&s.triangles);
+    let g = GBuffer::new(&s, &t, 32, 24, [0, 0]);
+    let none = Filter::new(Denoiser::None, &g);
+    let (a, reps) = reference(&s, &t, &g, 64, 4, 0);
+    let (b, _) = reference(&s, &t, &g, 64, 4, 1);
+    for c in 0..3 {
+        let r: Vec<&[f32]> = reps.iter().map(|x| x[c].as_slice()).collect();
+        let se = standard_error(&a[c], &r, &none, &g.hit);
+        let px = g.surface_pixels() as f64;
+        let diff = (a[c]
+            .iter()
+            .zip(&b[c])
+            .zip(&g.hit)
+            .filter(|(_, h)| **h)
+            .map(|((x, y), _)| ((x - y) as f64).powi(2))
+            .sum::<f64>()
+            / px)
+            .sqrt();
+        let ratio = diff / (std::f64::consts::SQRT_2 * se);
+        assert!(
+            (0.7..1.4).contains(&ratio),
+            "integrand {c}: {diff} vs se {se}: {ratio}"
+        );
+    }
+}
