@@ -1,11 +1,13 @@
 //! Runtime lookups against hand indexing (noise-runtime issue): `Mask3::get` / `get_k` on a
 //! 128×128×64 u16 mask vs `u16::from_le_bytes` on the same bytes with `&` wrapping, and the
-//! low-discrepancy grids, ns per lookup. Exactness is tested in noise-runtime's tests.
+//! low-discrepancy grids, and one value of a 128×128 sampler tile (4 spp, 4 dimensions: a
+//! lattice pair and a Sobol pair) beside the free samplers `rd_ign_r2` and `sobol_owen`, ns per
+//! lookup. Exactness is tested in noise-runtime's tests.
 //!
 //! `cargo bench -p noisebake-cli --bench runtime`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use noise_runtime::{Mask3, ldg};
+use noise_runtime::{Mask3, SamplerTile, ldg, sampler};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -73,6 +75,56 @@ fn lookups(c: &mut Criterion) {
             coords
                 .iter()
                 .map(|&(x, y, t)| ldg::r2_frame(x, y, t as u32))
+                .sum::<f32>()
+        })
+    });
+    // One value of a sampler tile: pixel, frame, sample and dimension vary per lookup.
+    let tile: SamplerTile<128, 128, 4, 4> = SamplerTile::new(
+        Mask3::new(&bytes[..128 * 128 * 4 * 2]),
+        black_box(0b10),
+    );
+    let reads: Vec<(i32, i32, u32, u32, u32)> = coords
+        .iter()
+        .enumerate()
+        .map(|(k, &(x, y, t))| (x, y, t as u32, k as u32 % 4, (k as u32 / 4) % 4))
+        .collect();
+    g.bench_function("SamplerTile::sample 128x128 spp 4 D 4", |b| {
+        b.iter(|| {
+            reads
+                .iter()
+                .map(|&(x, y, f, i, d)| tile.sample(x, y, f, i, d))
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("SamplerTile::sample, lattice pair (d 0)", |b| {
+        b.iter(|| {
+            reads
+                .iter()
+                .map(|&(x, y, f, i, _)| tile.sample(x, y, f, i, 0))
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("SamplerTile::sample, Sobol pair (d 3)", |b| {
+        b.iter(|| {
+            reads
+                .iter()
+                .map(|&(x, y, f, i, _)| tile.sample(x, y, f, i, 3))
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("sampler::rd_ign_r2::<2> (per value)", |b| {
+        b.iter(|| {
+            reads
+                .iter()
+                .map(|&(x, y, f, i, _)| sampler::rd_ign_r2::<2>(x, y, f * 4 + i)[0])
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("sampler::sobol_owen::<2> (per value)", |b| {
+        b.iter(|| {
+            reads
+                .iter()
+                .map(|&(x, y, f, i, _)| sampler::sobol_owen::<2>(x, y, f * 4 + i, 1)[0])
                 .sum::<f32>()
         })
     });

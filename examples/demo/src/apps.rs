@@ -3,6 +3,8 @@
 
 use crate::noises::Noise;
 use noisebake::stochastic::{Fbm, Fractal};
+use noisebake_cli::render::{self, GBuffer, scene::Scene, trace::Tracer};
+use rayon::prelude::*;
 
 /// One application: a reference image and a noisy per-frame estimate of it.
 pub trait App: Sync {
@@ -227,88 +229,47 @@ impl App for Volume {
     }
 }
 
-/// Ray-traced ambient occlusion of spheres on a ground plane seen from above (STBN §5.4), one
-/// cosine-weighted ray per pixel and frame; reference 1024 stratified rays.
+/// Ray-traced ambient occlusion of the room `noisebake report render` judges samplers in
+/// (`noisebake_cli::render::scene::Scene::room`: creases, contacts, thin columns, steps,
+/// spheres, open sky), one primary ray per pixel centre, traced through its BVH; one
+/// cosine-weighted ray per pixel and frame within the scene's AO radius. Pixels that see the
+/// sky hold 0 in every estimate and in the reference. Reference: 1024 stratified rays.
 pub struct Occlusion {
     /// Image size.
     pub size: [usize; 2],
+    scene: Scene,
+    tracer: Tracer,
+    g: GBuffer,
 }
 
-const SPHERES: [([f32; 3], f32); 4] = [
-    ([1.2, 1.3, 0.55], 0.55),
-    ([2.6, 1.1, 0.4], 0.4),
-    ([2.1, 2.6, 0.7], 0.7),
-    ([0.9, 2.9, 0.3], 0.3),
-];
-const AO_RANGE: f32 = 1.2;
-
 impl Occlusion {
-    /// Primary hit (orthographic, looking down −z): point and normal.
-    fn hit(&self, x: usize, y: usize) -> ([f32; 3], [f32; 3]) {
-        let p = [
-            (x as f32 + 0.5) / self.size[0] as f32 * 3.6 + 0.1,
-            (y as f32 + 0.5) / self.size[1] as f32 * 3.6 + 0.1,
-        ];
-        let mut best = ([p[0], p[1], 0.0], [0.0, 0.0, 1.0]);
-        for (c, r) in SPHERES {
-            let d2 = (p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2);
-            if d2 < r * r {
-                let z = c[2] + (r * r - d2).sqrt();
-                if z > best.0[2] {
-                    let q = [p[0], p[1], z];
-                    best = (q, [(q[0] - c[0]) / r, (q[1] - c[1]) / r, (q[2] - c[2]) / r]);
-                }
-            }
+    /// The room at `size`, its BVH and G-buffer built.
+    pub fn new(size: [usize; 2]) -> Occlusion {
+        let scene = Scene::room();
+        let tracer = Tracer::new(&scene.triangles);
+        let g = GBuffer::new(&scene, &tracer, size[0], size[1], [0, 0]);
+        Occlusion {
+            size,
+            scene,
+            tracer,
+            g,
         }
-        best
-    }
-
-    /// 1 if the ray from `o` along `d` escapes the spheres within the AO range.
-    fn visible(o: [f32; 3], d: [f32; 3]) -> f32 {
-        for (c, r) in SPHERES {
-            let oc = [o[0] - c[0], o[1] - c[1], o[2] - c[2]];
-            let b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
-            let cc = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - r * r;
-            let disc = b * b - cc;
-            if disc > 0.0 {
-                let t = -b - disc.sqrt();
-                if t > 1e-3 && t < AO_RANGE {
-                    return 0.0;
-                }
-            }
-        }
-        1.0
     }
 
     /// The visibility seen from pixel `(x, y)` along `local`, a direction about +z (turned into
     /// the frame of the pixel's normal): one ray of the estimate.
     pub fn ray(&self, x: usize, y: usize, local: [f32; 3]) -> f32 {
-        let (p, n) = self.hit(x, y);
-        Self::visible(p, Self::to_world(n, local))
-    }
-
-    /// A local direction about +z turned into the frame of normal `n`.
-    fn to_world(n: [f32; 3], l: [f32; 3]) -> [f32; 3] {
-        let a = if n[0].abs() > 0.9 {
-            [0.0, 1.0, 0.0]
-        } else {
-            [1.0, 0.0, 0.0]
-        };
-        let t = {
-            let c = [
-                a[1] * n[2] - a[2] * n[1],
-                a[2] * n[0] - a[0] * n[2],
-                a[0] * n[1] - a[1] * n[0],
-            ];
-            let l = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-            [c[0] / l, c[1] / l, c[2] / l]
-        };
-        let b = [
-            n[1] * t[2] - n[2] * t[1],
-            n[2] * t[0] - n[0] * t[2],
-            n[0] * t[1] - n[1] * t[0],
-        ];
-        [0, 1, 2].map(|i| t[i] * l[0] + b[i] * l[1] + n[i] * l[2])
+        let i = y * self.size[0] + x;
+        if !self.g.hit[i] {
+            return 0.0;
+        }
+        render::ao_ray(
+            &self.scene,
+            &self.tracer,
+            self.g.position[i],
+            self.g.normal[i],
+            local,
+        )
     }
 }
 
@@ -317,7 +278,7 @@ impl App for Occlusion {
         "occlusion"
     }
     fn caption(&self) -> &'static str {
-        "Ray-traced ambient occlusion (STBN §5.4): spheres on a plane, one cosine-weighted ray per pixel and frame (FAST: its baked cosine-hemisphere vector mask); reference 1024 stratified rays."
+        "Ray-traced ambient occlusion in the room `noisebake report render` traces (creases, contacts, columns, steps, spheres, open sky), one cosine-weighted ray per pixel and frame (FAST: its baked cosine-hemisphere vector mask); reference 1024 stratified rays."
     }
     fn channels(&self) -> usize {
         1
@@ -325,24 +286,21 @@ impl App for Occlusion {
     fn reference(&self) -> Vec<f32> {
         let [w, h] = self.size;
         (0..w * h)
+            .into_par_iter()
             .map(|i| {
-                let (p, n) = self.hit(i % w, i / w);
                 let mut v = 0.0;
                 for s in 0..1024u32 {
                     let (a, b) = ((s % 32) as f32, (s / 32) as f32);
                     let j = noisebake::hash::hash2(i as i32, s as i32, 5);
                     let u = (a + (j >> 16) as f32 / 65536.0) / 32.0;
                     let vv = (b + (j & 0xffff) as f32 / 65536.0) / 32.0;
-                    let d = Self::to_world(n, noisebake::warp::cosine_hemisphere(u, vv));
-                    v += Self::visible(p, d);
+                    v += self.ray(i % w, i / w, noisebake::warp::cosine_hemisphere(u, vv));
                 }
                 v / 1024.0
             })
             .collect()
     }
     fn pixel(&self, noise: Noise, x: usize, y: usize, f: u32, out: &mut [f32]) {
-        let (p, n) = self.hit(x, y);
-        let d = Self::to_world(n, noise.cosine_dir(x as i32, y as i32, f));
-        out[0] = Self::visible(p, d);
+        out[0] = self.ray(x, y, noise.cosine_dir(x as i32, y as i32, f));
     }
 }

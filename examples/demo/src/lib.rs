@@ -280,7 +280,7 @@ pub fn run(cfg: &Config) -> Result<Vec<AppResult>, String> {
         Box::new(Transparency { size }),
         Box::new(Dither { size }),
         Box::new(Volume::new(size)),
-        Box::new(Occlusion { size }),
+        Box::new(Occlusion::new(size)),
     ];
     let results: Vec<AppResult> = apps.iter().map(|a| render_app(a.as_ref(), cfg)).collect();
     if let Some(dir) = &cfg.out {

@@ -1,6 +1,7 @@
-//! Several rays per pixel: the occlusion scene with 4 cosine-weighted rays per pixel and frame,
-//! each ray's two numbers from a sampler — the baked sampler tile (`AO_RAYS`, made for the
-//! demo's blur), Ahmed & Wonka 2020's hierarchical ordering (ZSobol, Blender Cycles' default,
+//! Several rays per pixel: the occlusion scene (the room of `noisebake report render`) with 4
+//! cosine-weighted rays per pixel and frame, each ray's direction from a sampler — the baked
+//! sampler tile (`AO_RAYS`, trained on cosine-weighted directions for the demo's blur, read
+//! through its own warp `SamplerTile::cosine_hemisphere`), Ahmed & Wonka 2020's hierarchical ordering (ZSobol, Blender Cycles' default,
 //! no table), the free `rd_ign_r2` and `sobol_owen`, and white noise. Measured after the blur on
 //! the first frame (what a real-time renderer's denoiser sees) and after the EMA.
 
@@ -15,8 +16,8 @@ use rayon::prelude::*;
 /// Rays per pixel per frame.
 pub const SPP: u32 = 4;
 
-/// A source of each ray's two numbers: `(x, y, frame, ray) → (u, v)`.
-type Source<'a> = &'a (dyn Fn(i32, i32, u32, u32) -> [f32; 2] + Sync);
+/// A source of each ray's direction about +z: `(x, y, frame, ray) → ω`.
+type Source<'a> = &'a (dyn Fn(i32, i32, u32, u32) -> [f32; 3] + Sync);
 
 /// One sampler's errors after the blur, with their standard errors.
 #[derive(Clone, Debug)]
@@ -35,7 +36,7 @@ pub struct Row {
 
 /// Renders the occlusion scene at [`SPP`] rays per pixel with every sampler.
 pub fn run(cfg: &Config) -> Vec<Row> {
-    let app = Occlusion { size: cfg.size };
+    let app = Occlusion::new(cfg.size);
     let [w, h] = cfg.size;
     let reference = blur(&app.reference(), cfg.size, 1);
     let footprint = 4.0 * std::f64::consts::PI;
@@ -44,24 +45,26 @@ pub fn run(cfg: &Config) -> Vec<Row> {
             "sampler tile",
             false,
             AO_RAYS.keys().bytes().len(),
-            &|x, y, f, i| AO_RAYS.sample2(x, y, f, i, 0),
+            &|x, y, f, i| AO_RAYS.cosine_hemisphere(x, y, f, i, 0),
         ),
         ("zsobol", true, 0, &|x, y, f, i| {
             // Ordered for SPP samples a frame, scrambled afresh each frame (seeded by it), as
             // a real-time renderer would run it.
             let z = ZSobol::new(w.max(h), SPP, 7 + u64::from(f));
-            [z.sample(x, y, i, 0), z.sample(x, y, i, 1)]
+            warp::cosine_hemisphere(z.sample(x, y, i, 0), z.sample(x, y, i, 1))
         }),
         ("rd_ign_r2", true, 0, &|x, y, f, i| {
-            sampler::rd_ign_r2::<2>(x, y, f * SPP + i)
+            let [u, v] = sampler::rd_ign_r2::<2>(x, y, f * SPP + i);
+            warp::cosine_hemisphere(u, v)
         }),
         ("sobol_owen", true, 0, &|x, y, f, i| {
-            sampler::sobol_owen::<2>(x, y, f * SPP + i, 1)
+            let [u, v] = sampler::sobol_owen::<2>(x, y, f * SPP + i, 1);
+            warp::cosine_hemisphere(u, v)
         }),
         ("white", true, 0, &|x, y, f, i| {
             let n = ((f * SPP + i) * 2) as i32;
             let u = |k: i32| (noisebake::hash::hash3(x, y, n + k, 99) >> 8) as f32 / 16_777_216.0;
-            [u(0), u(1)]
+            warp::cosine_hemisphere(u(0), u(1))
         }),
     ];
     sources
@@ -75,8 +78,7 @@ pub fn run(cfg: &Config) -> Vec<Row> {
                     for (x, out) in row.iter_mut().enumerate() {
                         let mut sum = 0.0;
                         for i in 0..SPP {
-                            let [u, v] = source(x as i32, y as i32, f, i);
-                            sum += app.ray(x, y, warp::cosine_hemisphere(u, v));
+                            sum += app.ray(x, y, source(x as i32, y as i32, f, i));
                         }
                         *out = sum / SPP as f32;
                     }
@@ -119,7 +121,7 @@ pub fn verdict(rows: &[Row]) -> String {
 /// Prints the panel.
 pub fn print(rows: &[Row], cfg: &Config) {
     println!(
-        "\nocclusion with {SPP} rays per pixel per frame (each ray's two numbers from a sampler), after the blur:"
+        "\nocclusion in the room with {SPP} rays per pixel per frame (each ray's direction from a sampler), after the blur:"
     );
     println!(
         "  {:<14} {:>8} {:>18} {:>22}",

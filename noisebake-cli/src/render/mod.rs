@@ -140,14 +140,32 @@ fn direct(scene: &Scene, tracer: &Tracer, p: Vec3, n: Vec3, s: f32, t: f32) -> (
     )
 }
 
+/// A direction `local` about +z (e.g. a cosine-weighted one) turned into the frame of the unit
+/// normal `n`.
+#[inline]
+pub fn to_world(n: Vec3, local: [f32; 3]) -> Vec3 {
+    let (t, b) = basis(n);
+    (t * local[0] + b * local[1] + n * local[2]).normalize()
+}
+
+/// One ray of ambient occlusion from the surface point `p` with normal `n` along `local` (a
+/// direction about +z): 1 where nothing lies within the scene's AO radius, else 0.
+#[inline]
+pub fn ao_ray(scene: &Scene, tracer: &Tracer, p: Vec3, n: Vec3, local: [f32; 3]) -> f32 {
+    let dir = to_world(n, local);
+    if tracer.occluded(p, dir, scene.ao_radius) {
+        0.0
+    } else {
+        1.0
+    }
+}
+
 /// One sample `s` (four values in `[0, 1)`) at the surface point `p` with normal `n`: the AO,
 /// shadow and bounce estimates, and the rays it traced.
 #[inline]
 pub fn shade(scene: &Scene, tracer: &Tracer, p: Vec3, n: Vec3, s: [f32; 4]) -> ([f32; 3], u32) {
     let [u, v] = [s[0], s[1]];
-    let [x, y, z] = noise_runtime::warp::cosine_hemisphere_polar(u, v);
-    let (t, b) = basis(n);
-    let dir = (t * x + b * y + n * z).normalize();
+    let dir = to_world(n, noise_runtime::warp::cosine_hemisphere_polar(u, v));
     let mut rays = 1;
     let hit = tracer.closest(p, dir, f32::MAX);
     let ao = match hit {

@@ -175,3 +175,37 @@ fn the_references_standard_error_matches_independent_references() {
         );
     }
 }
+
+/// A user's `.obj`: every face is triangulated, degenerate ones dropped, the camera sees the
+/// scene, the light sits above it; files that are not scenes get an error naming the file.
+#[test]
+fn an_obj_scene_loads_and_bad_ones_are_named() {
+    let dir = std::env::temp_dir().join(format!("noisebake-obj-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A 4 × 4 floor as one quad, a unit cube on it (six quads), and a degenerate triangle.
+    let obj = "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 4 3 2\n\
+v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+f 5 8 7 6\nf 9 10 11 12\nf 5 6 10 9\nf 6 7 11 10\nf 7 8 12 11\nf 8 5 9 12\nf 5 5 6\n";
+    let path = dir.join("box.obj");
+    std::fs::write(&path, obj).unwrap();
+    let s = Scene::from_obj(&path).unwrap();
+    assert_eq!(s.triangles.len(), 2 + 12, "quads split in two, the degenerate face dropped");
+    assert!((s.ao_radius - 1.0).abs() < 1e-6, "a quarter of the 4-unit bounds");
+    assert!(s.light.corner.y > 1.0 && s.light.normal().y < 0.0, "the light shines down from above");
+    let t = Tracer::new(&s.triangles);
+    let g = GBuffer::new(&s, &t, 32, 24, [0, 0]);
+    assert!(g.surface_pixels() > 32 * 24 / 4, "{} pixels see the scene", g.surface_pixels());
+    // Beside the cube on the floor, AO is below 1; the floor's far corner sees more sky.
+    let near = mean_shading(&s, &t, Vec3::new(1.05, 1e-4, 0.5), 64)[0];
+    let far = mean_shading(&s, &t, Vec3::new(-1.9, 1e-4, -1.9), 64)[0];
+    assert!(near < 0.8 && far > near + 0.1, "AO beside the cube {near}, far {far}");
+    for (name, text) in [("empty.obj", "v 0 0 0\n"), ("bad.obj", "v 0 0 0\nf 1 2 3\n")] {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        let e = Scene::from_obj(&p).unwrap_err();
+        assert!(e.contains(name), "{e}");
+    }
+    let e = Scene::from_obj(&dir.join("missing.obj")).unwrap_err();
+    assert!(e.contains("missing.obj"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
