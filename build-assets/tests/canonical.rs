@@ -10,152 +10,152 @@ const PINS: &[(&str, &str, &str)] = &[
     (
         "kind = \"sampler\"\ndims = [32, 32]\nspp = 4\nsample_dims = 4\nsample_space = \"disk\"\nspatial_filter = { kind = \"atrous\", passes = 3 }",
         "kind=sampler;dims=[32,32];seed=0;format=u16;spp=4;sample_dims=4;sample_space=[disk,disk];spatial_filter={kind=atrous,passes=3};temporal_filter={kind=none};frames=1",
-        "b08a34301f3e230a0600a1b4a7005f83",
+        "ef42f4a0096200c5a2dc5604bd9a1ab4",
     ),
     (
         "kind = \"fast\"\ndims = [16, 16]\nspatial_filter = { kind = \"atrous\", passes = 2 }",
         "kind=fast;dims=[16,16];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=atrous,passes=2};temporal_filter={kind=none};combine=product;iterations=converged;start=ign",
-        "8f4136a150e27fb49850276e3b1b2dbc",
+        "9690b280034b1809e21b9bc0d5677a1b",
     ),
     (
         "kind = \"sampler\"\ndims = [128, 128]",
         "kind=sampler;dims=[128,128];seed=0;format=u16;spp=1;sample_dims=2;sample_space=[square];spatial_filter={kind=gauss,sigma=1};temporal_filter={kind=none};frames=1",
-        "7c28113bcb0437c80b7ad798c4caa750",
+        "89cc9019eea833f205ba12bf46eb959d",
     ),
     (
         "kind = \"sampler\"\ndims = [64, 32]\nseed = 3\nspp = 16\nsample_dims = 6\nsample_space = [\"cosine_hemisphere\", \"square\", \"disk\"]\nspatial_filter = { kind = \"box\", size = 5 }\ntemporal_filter = { kind = \"ema\", alpha = 0.1 }\nframes = 4",
         "kind=sampler;dims=[64,32];seed=3;format=u16;spp=16;sample_dims=6;sample_space=[cosine_hemisphere,square,disk];spatial_filter={kind=box,size=5};temporal_filter={kind=ema,alpha=0.1};frames=4",
-        "d985f2c77c7fe91453424f03c8955a43",
+        "c42562eed9fecb040915b8960f954052",
     ),
     (
         "kind = \"blue2d\"\ndims = [64, 64]",
         "kind=blue2d;dims=[64,64];seed=0;format=u8;sigma=1.5;initial_density=0.1",
-        "ad98ffb1e895945b76f6e75019554a35",
+        "3971c27f4086beea33709d399c1eaa42",
     ),
     (
         "kind = \"stbn\"\ndims = [64, 64, 16]\nseed = 7\nformat = \"u16\"",
         "kind=stbn;dims=[64,64,16];seed=7;format=u16;sigma_xy=1.9;sigma_t=1.9;initial_density=0.1;histogram=volume",
-        "e543022349d3b5e37a8071ce9c29e8e3",
+        "43f0e79412d35138907eb3c03766ca70",
     ),
     (
         "kind = \"stbn\"\ndims = [32, 32, 8]\nhistogram = \"slice\"\nsigma_xy = 2.1\nsigma_t = 1.5\ninitial_density = 0.2",
         "kind=stbn;dims=[32,32,8];seed=0;format=u8;sigma_xy=2.1;sigma_t=1.5;initial_density=0.2;histogram=slice",
-        "3d026de74efcbaf111c89ae400f4bebc",
+        "b611939163d4507c6a9ee5ef4b3eee35",
     ),
     (
         "kind = \"vac\"\ndims = [8, 8, 4, 4]\ngroups = [{ axes = [0, 1] }, { axes = [2], sigma = 1.5 }, { axes = [3] }]\ntoroidal = [true, true, false, true]\nformat = \"f32\"",
         "kind=vac;dims=[8,8,4,4];seed=0;format=f32;groups=[{axes=[0,1],sigma=1.9},{axes=[2],sigma=1.5},{axes=[3],sigma=1.9}];toroidal=[true,true,false,true];initial_density=0.1;histogram=volume",
-        "b649a36d043ffb821168a50279bc283d",
+        "0c3dfa50b7d198a5cdfd7605c13540b4",
     ),
     (
         "kind = \"white\"\ndims = [16, 16, 4]\nseed = 3",
         "kind=white;dims=[16,16,4];seed=3;format=u8",
-        "ae32408c89f567834d972a66545c999e",
+        "1dd300d2c7de26d57cd0e19072bf9dff",
     ),
     (
         "kind = \"independent2d\"\ndims = [32, 32, 8]",
         "kind=independent2d;dims=[32,32,8];seed=0;format=u8;sigma=1.9;initial_density=0.1",
-        "0bada0ad9cc7689e1b9f477ca93ee2cd",
+        "b4db367ed1b199ab7b38efb73d6ff534",
     ),
     (
         "kind = \"golden\"\ndims = [32, 32, 8]\nformat = \"u16\"",
         "kind=golden;dims=[32,32,8];seed=0;format=u16;sigma=1.9;initial_density=0.1",
-        "c5f4bcdfe9f5870700ea9c7e6e97b1e1",
+        "cf66c2c6adc4d7152eacb48564934c90",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32]",
         "kind=fast;dims=[32,32];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=none};combine=product;iterations=converged;start=ign",
-        "a72308bbe75de36e36e4a6b44fa0cb69",
+        "8b911d615ae70f0b9c6ada9f616e41f0",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]",
         "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=ign",
-        "e5bdc01d14cabc933b964346b4b98df3",
+        "09f5db1c5129955acab9022d1b054daa",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nspatial_filter = { kind = \"box\", size = 3 }\ntemporal_filter = { kind = \"box\", size = 4 }",
         "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=box,size=3};temporal_filter={kind=box,size=4};combine=product;iterations=converged;start=ign",
-        "7e482235c4bed6cddeeaaec577db8507",
+        "c2ce3e45b5cd87185a2b5710f559a212",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 16]\nspatial_filter = { kind = \"binomial\", order = 2 }\ntemporal_filter = { kind = \"gauss\", sigma = 1.2 }",
         "kind=fast;dims=[32,32,16];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=binomial,order=2};temporal_filter={kind=gauss,sigma=1.2};combine=product;iterations=converged;start=ign",
-        "bdc9c9591860bce7509d6717e26690e7",
+        "35182c64cc808a6c79bb68e34167962e",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nspatial_filter = { kind = \"none\" }\ntemporal_filter = { kind = \"ema\", alpha = 0.1, beta = 0.1 }\ncombine = { separate = 0.5 }",
         "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=none};temporal_filter={kind=ema,alpha=0.1,beta=0.1};combine={separate=0.5};iterations=converged;start=ign",
-        "813af49124f28e21aee13ab676258893",
+        "43129d27874612284899df2f7a475138",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\ntemporal_filter = { kind = \"none\" }\niterations = 5\nstart = \"random\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=none};combine=product;iterations=5;start=random",
-        "fdc33edfb55808266a550d35ab72e98e",
+        "0246f3424c2cb63c96a954e87271e80d",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\ntemporal_filter = { kind = \"taa\" }",
         "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=taa,alpha=0.1,coverage=0.2,motion=[0,0],moving=0};combine=product;iterations=converged;start=ign",
-        "182b87128df86a7f166a9b006786267a",
+        "3514bca6dbcc284e7d920bfc897a97cf",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\ntemporal_filter = { kind = \"taa\", motion = [3, -1] }",
         "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=scalar;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=taa,alpha=0.1,coverage=0.2,motion=[3,-1],moving=0.25};combine=product;iterations=converged;start=ign",
-        "6d159fc5198b366c30188c7d7b43ef1e",
+        "e5778eb60c9cc0fcb773cf22b8b93cbf",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\ndistribution = \"tent\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=scalar;distribution=tent;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=ign",
-        "6cb8c6f1160fdc327a14a35d4413b748",
+        "a76efd723863c21c9937ea90304f6a37",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\ndistribution = \"gauss\"\nformat = \"f32\"",
         "kind=fast;dims=[32,32,8];seed=0;format=f32;sample_space=scalar;distribution=gauss;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=ign",
-        "02eebfc7963f7ac5face048c42d9b7d2",
+        "fede2baf8c8c85d123c5c6f7641de291",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nsample_space = \"circle\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8;sample_space=circle;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=ign",
-        "c3221df98be2712984f4a922834393ff",
+        "64e6b173776e9841fbd6cb7bbef6577a",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nsample_space = \"vec2\"\nformat = \"u8x2\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8x2;sample_space=vec2;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=rd_ign_r2",
-        "3a8fcc3af972328c53514997096f8fe3",
+        "e4039198e31b6625623bbb4c6b453d86",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nsample_space = \"vec3\"\nformat = \"u8x3\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8x3;sample_space=vec3;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=random",
-        "5c6fc7d32e12cf20084e1843f7e68a5a",
+        "3be9cdee1b456f6b5cc564467e694379",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nsample_space = \"vec4\"\nformat = \"u8x4\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8x4;sample_space=vec4;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=random",
-        "7cd6576bce67b635b188da26b8078e62",
+        "707bc15b467e436992e950efe6b6e3d9",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nsample_space = \"sphere\"\nformat = \"u8x3\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8x3;sample_space=sphere;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=rd_ign_r2",
-        "98a431a4fb9909d7a0740d114b6a8335",
+        "65f5f8166d63c81d52bb0a98f24bc938",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nsample_space = \"hemisphere\"\nformat = \"f32x3\"",
         "kind=fast;dims=[32,32,8];seed=0;format=f32x3;sample_space=hemisphere;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=rd_ign_r2",
-        "e9aa6e4e1e7dbf7450f89370c7aea466",
+        "3a8a0013a0cba454f0135d63a14c6bfd",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nspatial_filter = { kind = \"box\", size = 5 }",
         "kind=fast;dims=[32,32,8];seed=0;format=u8x3;sample_space=cosine_hemisphere;distribution=uniform;spatial_filter={kind=box,size=5};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=ign_r2",
-        "2c2521df694dc217f58661e4a52998ae",
+        "3ab3e532058c086e25668eb0d7286b93",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nsample_space = \"cosine_hemisphere\"\nformat = \"u8x3\"\nstart = \"ign_r2\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8x3;sample_space=cosine_hemisphere;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=ign_r2",
-        "796bd56f36c78e05287f41c971fa1b8d",
+        "5ef055a1a0c95796c307965b182e1630",
     ),
     (
         "kind = \"fast\"\ndims = [32, 32, 8]\nsample_space = \"sphere\"\nformat = \"u8x3\"\nstart = \"rd_ign_r2\"",
         "kind=fast;dims=[32,32,8];seed=0;format=u8x3;sample_space=sphere;distribution=uniform;spatial_filter={kind=gauss,sigma=1.3435};temporal_filter={kind=ema,alpha=0.1,beta=0};combine=product;iterations=converged;start=rd_ign_r2",
-        "98a431a4fb9909d7a0740d114b6a8335",
+        "65f5f8166d63c81d52bb0a98f24bc938",
     ),
 ];
 
@@ -222,4 +222,31 @@ fn canonical_text_reads_back() {
         "kind=fast;dims=[16,16,4];seed=0;format=u8;sample_space=scalar;distribution=Uniform;spatial=Gauss { sigma: 1.3435 }"
     )
     .is_err());
+}
+
+/// Which pairs of a sampler tile run Sobol (the `sobol_pairs` the generated code passes): the
+/// `square` ones from two samples per frame; warped pairs, and every pair at one sample per
+/// frame, run the lattice.
+#[test]
+fn square_pairs_run_sobol_from_two_samples() {
+    use build_assets::spec::Kind;
+    let pairs = |body: &str| match spec(body).kind {
+        Kind::Sampler(p) => p.sobol_pairs(),
+        _ => unreachable!(),
+    };
+    let head = "kind = \"sampler\"\ndims = [16, 16]\nsample_dims = 5\n";
+    assert_eq!(pairs(&format!("{head}spp = 4")), 0b111);
+    assert_eq!(
+        pairs(&format!(
+            "{head}spp = 4\nsample_space = [\"cosine_hemisphere\", \"square\", \"square\"]"
+        )),
+        0b110
+    );
+    // One string applies to every pair; the lone fifth dimension has nothing to warp and stays
+    // `square`.
+    assert_eq!(
+        pairs(&format!("{head}spp = 2\nsample_space = \"disk\"")),
+        0b100
+    );
+    assert_eq!(pairs(&format!("{head}spp = 1")), 0);
 }

@@ -74,5 +74,5 @@ const GOLDEN: [u64; 13] = [
     0xec72c00d766b7a25,
     0x1a6fc64ea2ffa362,
     0xd569656c31a8846c,
-    0x8cab7c5bad2a10fb,
+    0xaa939a8993754d8b,
 ];

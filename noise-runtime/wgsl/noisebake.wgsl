@@ -448,11 +448,11 @@ fn nb_sobol2(n: u32, axis: u32) -> u32 {
 // Dimension d of sample n of a pixel whose key in that dimension is `key`, in a dims-dimensional
 // tile whose pairs flagged in `sobol_pairs` (bit p for dimensions 2p, 2p + 1) run Sobol
 // (sampler::tile_point): n * step + key * 2^16 wrapping for a lattice dimension,
-// sobol2(n, d % 2) ^ key * 2^16 for a Sobol one.
+// owen(sobol2(n, d % 2), mix(key * 2^16 + d)) for a Sobol one.
 fn nb_tile_point(n: u32, d: u32, dims: u32, key: u32, sobol_pairs: u32) -> u32 {
     let dd = d % clamp(dims, 1u, 8u);
     if (((sobol_pairs >> (dd / 2u)) & 1u) != 0u) {
-        return nb_sobol2(n, dd) ^ (key << 16u);
+        return nb_owen(nb_sobol2(n, dd), nb_mix((key << 16u) | dd));
     }
     return n * nb_tile_step(dims, dd) + (key << 16u);
 }

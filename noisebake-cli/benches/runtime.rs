@@ -79,10 +79,8 @@ fn lookups(c: &mut Criterion) {
         })
     });
     // One value of a sampler tile: pixel, frame, sample and dimension vary per lookup.
-    let tile: SamplerTile<128, 128, 4, 4> = SamplerTile::new(
-        Mask3::new(&bytes[..128 * 128 * 4 * 2]),
-        black_box(0b10),
-    );
+    let tile: SamplerTile<128, 128, 4, 4> =
+        SamplerTile::new(Mask3::new(&bytes[..128 * 128 * 4 * 2]), black_box(0b10));
     let reads: Vec<(i32, i32, u32, u32, u32)> = coords
         .iter()
         .enumerate()

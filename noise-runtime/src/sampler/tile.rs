@@ -12,11 +12,15 @@
 //!   (`n · A_d + key_d · 2^16`, wrapping). Its points are evenly spread along every line
 //!   through the square, what a polar warp (`φ = 2πv` wraps) asks for, and it is the structure
 //!   of Belcour and Heitz 2021's screen-space sampler.
-//! - **The square: the Sobol (0, 2)-sequence.** Dimensions 0 and 1 of Sobol's sequence
-//!   ([`sobol2`]), digitally shifted: `sobol2(n, d mod 2) ⊕ key_d · 2^16`. Every frame of a
-//!   power-of-two `SPP` is a (0, m, 2)-net, stratified in every elementary interval, what
-//!   half-planes of the square (an area light's edge) ask for; it is the structure of Heitz et
-//!   al. 2019's tables.
+//! - **The square: the Sobol (0, 2)-sequence, Owen-scrambled.** Dimensions 0 and 1 of
+//!   Sobol's sequence ([`sobol2`]) through Burley's hash-based nested uniform scramble
+//!   ([`super::owen`], Burley 2020) seeded by the pixel's key and the dimension:
+//!   `owen(sobol2(n, d mod 2), mix(key_d · 2^16 + d))`. Every frame of a power-of-two `SPP`,
+//!   and every power-of-two prefix of a pixel's history, is a (0, m, 2)-net, stratified in
+//!   every elementary interval, what half-planes of the square (an area light's edge) ask for;
+//!   the nested scramble gives each pixel's estimate the variance of an Owen-scrambled net,
+//!   well below a digital shift's, which is what is left after a wide denoiser or a long EMA.
+//!   It is the structure of Heitz et al. 2019's tables.
 //!
 //! The bake sets which pairs run Sobol (`sobol_pairs`, bit `p` for dimensions `2p`, `2p + 1`).
 //! Either way:
@@ -25,17 +29,18 @@
 //!   `f · SPP … f · SPP + SPP − 1`: a pixel's samples over frames continue one progressive
 //!   sequence, which is what an accumulating renderer (TAA, a denoiser's temporal pass)
 //!   averages.
-//! - **Every frame is the first, moved.** The lattice's frame `f` is frame 0 with every
-//!   pixel's shift moved by the same `f · SPP · α`; Sobol's (for a power-of-two `SPP`) is frame
-//!   0 with every key XORed by the same `sobol2(f · SPP)`, the sequence being linear over the
-//!   bits. The arrangement of keys, which is what the generator optimises, serves every frame
-//!   alike.
+//! - **Every frame is the first, moved** (the lattice). The lattice's frame `f` is frame 0
+//!   with every pixel's shift moved by the same `f · SPP · α`, so the arrangement of keys, which
+//!   is what the generator optimises, serves every frame alike. A Sobol pair's frame `f` is
+//!   another net scrambled by the same keys; the generator trains those pairs on their frames'
+//!   integrands at random offsets.
 //! - **The keys make the errors blue.** The generator starts from the free construction's
 //!   shifts (`noise_runtime::sampler::rd_ign_r2`: interleaved gradient noise and the R2 grid)
 //!   and swaps keys between pixels only where that lowers the error left after the declared
 //!   denoiser (Heitz et al. 2019's goal) for integrands of the pair's space.
 //! - **A read is a texel and a few integer operations**: a multiply-add for the lattice; a
-//!   bit reversal, or four byte-table lookups, and an XOR for Sobol. No bit loop, no hash.
+//!   bit reversal or four byte-table lookups, then a five-step hash scramble, for Sobol. No
+//!   bit loop.
 //!
 //! The keys are stored as a mask of 16-bit texels, `D` layers of `W × H` (layer = dimension),
 //! so the tile uploads, caches and exports as any other mask. `nb_sampler_tile` in the WGSL
@@ -164,13 +169,14 @@ pub const fn sobol2(n: u32, axis: u32) -> u32 {
 ///
 /// - a **lattice** dimension (flag clear) is the R_D sequence Cranley–Patterson rotated by the
 ///   key: `n · A_d + key · 2^16`, wrapping, i.e. `frac(n · α_d + key / 2^16)`;
-/// - a **Sobol** dimension (flag set) is [`sobol2`]`(n, d mod 2)` digitally shifted by the key:
-///   `sobol2(n, d mod 2) ⊕ key · 2^16`.
+/// - a **Sobol** dimension (flag set) is [`sobol2`]`(n, d mod 2)` Owen-scrambled with a seed
+///   from the key and the dimension: `owen(sobol2(n, d mod 2), mix(key · 2^16 + d))`
+///   ([`super::owen`]; `mix` is the runtime's 32-bit avalanche, WGSL `nb_mix`).
 ///
 /// `dims` is 1 to [`MAX_TILE_DIMS`] and `d` below it (others are taken modulo).
 #[must_use]
 #[inline(always)]
-pub const fn tile_point(n: u32, d: u32, dims: u32, key: u16, sobol_pairs: u8) -> u32 {
+pub fn tile_point(n: u32, d: u32, dims: u32, key: u16, sobol_pairs: u8) -> u32 {
     let row = if dims == 0 {
         0
     } else if dims as usize > MAX_TILE_DIMS {
@@ -181,7 +187,7 @@ pub const fn tile_point(n: u32, d: u32, dims: u32, key: u16, sobol_pairs: u8) ->
     let d = d % (row as u32 + 1);
     let shift = (key as u32) << 16;
     if sobol_pairs >> (d / 2) & 1 == 1 {
-        sobol2(n, d) ^ shift
+        super::owen(sobol2(n, d), crate::hash::mix(shift | d))
     } else {
         n.wrapping_mul(TILE_STEPS[row][d as usize])
             .wrapping_add(shift)
@@ -322,8 +328,8 @@ mod tests {
     }
 
     /// A Sobol pair's frames of 4 samples are each a (0, 2, 2)-net (one point in each of the
-    /// 2 × 2, 4 × 1 and 1 × 4 elementary intervals), every frame is frame 0 with one XOR for all
-    /// pixels, and the lattice pairs of the same tile are untouched by the flag.
+    /// 2 × 2, 4 × 1 and 1 × 4 elementary intervals), a pixel's first four frames together a
+    /// (0, 4, 2)-net, and the lattice pairs of the same tile are untouched by the flag.
     #[test]
     fn sobol_pairs_are_nets_in_every_frame() {
         let bytes: Vec<u8> = (0..4 * 2 * 3 * 2).map(|i| (i * 29 + 5) as u8).collect();
@@ -349,6 +355,7 @@ mod tests {
         }
         let bytes: Vec<u8> = (0..4 * 2 * 4 * 2).map(|i| (i * 73 + 9) as u8).collect();
         let four: SamplerTile<4, 2, 4, 4> = SamplerTile::new(Mask3::new(Vec::leak(bytes)), 0b10);
+        let top = |x: u32, bits: u32| if bits == 0 { 0 } else { x >> (32 - bits) };
         for f in [0u32, 3, 12345] {
             let pts: Vec<[u32; 2]> = (0..4)
                 .map(|i| {
@@ -358,7 +365,6 @@ mod tests {
                     ]
                 })
                 .collect();
-            let top = |x: u32, bits: u32| if bits == 0 { 0 } else { x >> (32 - bits) };
             for (bu, bv) in [(1, 1), (2, 0), (0, 2)] {
                 let mut cells = [0u8; 4];
                 for p in &pts {
@@ -366,15 +372,24 @@ mod tests {
                 }
                 assert_eq!(cells, [1; 4], "frame {f}, {bu} × {bv} bits");
             }
-            for i in 0..4 {
-                for d in [2u32, 3] {
-                    let moved = four.sample_bits(0, 0, f, i, d) ^ four.sample_bits(0, 0, 0, i, d);
-                    assert_eq!(
-                        moved,
-                        four.sample_bits(3, 1, f, i, d) ^ four.sample_bits(3, 1, 0, i, d)
-                    );
-                }
+        }
+        // A pixel's first four frames together, 16 samples, are a (0, 4, 2)-net: one point in
+        // each of the 16 cells of every elementary shape.
+        let pts: Vec<[u32; 2]> = (0..4)
+            .flat_map(|f| (0..4).map(move |i| (f, i)))
+            .map(|(f, i)| {
+                [
+                    four.sample_bits(1, 0, f, i, 2),
+                    four.sample_bits(1, 0, f, i, 3),
+                ]
+            })
+            .collect();
+        for bu in 0..=4 {
+            let mut cells = [0u8; 16];
+            for p in &pts {
+                cells[(top(p[0], bu) << (4 - bu) | top(p[1], 4 - bu)) as usize] += 1;
             }
+            assert_eq!(cells, [1; 16], "{bu} × {} bits", 4 - bu);
         }
     }
 
@@ -389,9 +404,9 @@ mod tests {
                 let f = phi.powi(dims as i32 + 1) - phi - 1.0;
                 phi -= f / ((dims as f64 + 1.0) * phi.powi(dims as i32) - 1.0);
             }
-            for d in 0..dims {
+            for (d, &step) in TILE_STEPS[dims - 1][..dims].iter().enumerate() {
                 let want = (4_294_967_296.0 / phi.powi(d as i32 + 1)) as u64;
-                let got = TILE_STEPS[dims - 1][d] as u64;
+                let got = step as u64;
                 assert!(
                     got.abs_diff(want) <= 2,
                     "D = {dims}, d = {d}: {got:#x} {want:#x}"

@@ -189,17 +189,37 @@ f 5 8 7 6\nf 9 10 11 12\nf 5 6 10 9\nf 6 7 11 10\nf 7 8 12 11\nf 8 5 9 12\nf 5 5
     let path = dir.join("box.obj");
     std::fs::write(&path, obj).unwrap();
     let s = Scene::from_obj(&path).unwrap();
-    assert_eq!(s.triangles.len(), 2 + 12, "quads split in two, the degenerate face dropped");
-    assert!((s.ao_radius - 1.0).abs() < 1e-6, "a quarter of the 4-unit bounds");
-    assert!(s.light.corner.y > 1.0 && s.light.normal().y < 0.0, "the light shines down from above");
+    assert_eq!(
+        s.triangles.len(),
+        2 + 12,
+        "quads split in two, the degenerate face dropped"
+    );
+    assert!(
+        (s.ao_radius - 1.0).abs() < 1e-6,
+        "a quarter of the 4-unit bounds"
+    );
+    assert!(
+        s.light.corner.y > 1.0 && s.light.normal().y < 0.0,
+        "the light shines down from above"
+    );
     let t = Tracer::new(&s.triangles);
     let g = GBuffer::new(&s, &t, 32, 24, [0, 0]);
-    assert!(g.surface_pixels() > 32 * 24 / 4, "{} pixels see the scene", g.surface_pixels());
+    assert!(
+        g.surface_pixels() > 32 * 24 / 4,
+        "{} pixels see the scene",
+        g.surface_pixels()
+    );
     // Beside the cube on the floor, AO is below 1; the floor's far corner sees more sky.
     let near = mean_shading(&s, &t, Vec3::new(1.05, 1e-4, 0.5), 64)[0];
     let far = mean_shading(&s, &t, Vec3::new(-1.9, 1e-4, -1.9), 64)[0];
-    assert!(near < 0.8 && far > near + 0.1, "AO beside the cube {near}, far {far}");
-    for (name, text) in [("empty.obj", "v 0 0 0\n"), ("bad.obj", "v 0 0 0\nf 1 2 3\n")] {
+    assert!(
+        near < 0.8 && far > near + 0.1,
+        "AO beside the cube {near}, far {far}"
+    );
+    for (name, text) in [
+        ("empty.obj", "v 0 0 0\n"),
+        ("bad.obj", "v 0 0 0\nf 1 2 3\n"),
+    ] {
         let p = dir.join(name);
         std::fs::write(&p, text).unwrap();
         let e = Scene::from_obj(&p).unwrap_err();

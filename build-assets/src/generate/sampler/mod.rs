@@ -1,25 +1,28 @@
-//! Sampler tiles (kind `sampler`): for every pixel and dimension, the shift that rotates the
-//! tile's R_D sequence there (`noise_runtime::sampler::{SamplerTile, tile_point}`), arranged so
-//! that the pixels' Monte Carlo errors are blue under the declared spatial filter, in the space
-//! each pair of dimensions is warped into, on every frame or accumulated by an EMA.
+//! Sampler tiles (kind `sampler`): for every pixel and dimension, the key of the tile's
+//! sequence there (`noise_runtime::sampler::{SamplerTile, tile_point}`), arranged so that the
+//! pixels' Monte Carlo errors are blue under the declared spatial filter, in the space each
+//! pair of dimensions is warped into, on every frame or accumulated by an EMA.
 //!
-//! Every pixel runs the same low-discrepancy sequence, shifted; what the generator chooses is
-//! the arrangement of the shifts: shifts whose errors, integrand by integrand, cancel under the
-//! filter — Heitz, Belcour, Ostromoukhov, Coeurjolly and Iehl's goal (2019, "A Low-Discrepancy
-//! Sampler that Distributes Monte Carlo Errors as a Blue Noise in Screen Space"), over Belcour
-//! and Heitz's structure (2021, "Lessons Learned and Improvements when Building Screen-Space
-//! Samplers with Blue-Noise Error Distribution": a rank-1 lattice, progressive in time for
-//! free, with optimised per-pixel shifts). `training.rs` holds the integrands and the pixels'
-//! errors, `optimise.rs` the loss and the swaps.
+//! Every pixel runs the same low-discrepancy sequence per pair, moved by its key: the R_D
+//! rank-1 lattice rotated by it for warped pairs (Belcour and Heitz's structure, 2021, "Lessons
+//! Learned and Improvements when Building Screen-Space Samplers with Blue-Noise Error
+//! Distribution": progressive in time for free), the Sobol (0, 2)-sequence Owen-scrambled with
+//! it as seed for `square` pairs (the structure of Heitz et al.'s tables). What the generator
+//! chooses is the arrangement of the keys: keys whose errors, integrand by integrand, cancel
+//! under the filter — Heitz, Belcour, Ostromoukhov, Coeurjolly and Iehl's goal (2019, "A
+//! Low-Discrepancy Sampler that Distributes Monte Carlo Errors as a Blue Noise in Screen
+//! Space"). `training.rs` holds the integrands and the pixels' errors, `optimise.rs` the loss
+//! and the swaps.
 //!
-//! - **Start.** The free construction `rd_ign_r2`: the same sequence (R_D), shifted per pixel by
-//!   interleaved gradient noise and the R2 grid. The optimiser only makes swaps that lower the
-//!   loss, so a tile never ends above the free construction on what it is trained for.
+//! - **Start.** The free construction `rd_ign_r2`'s shifts (interleaved gradient noise and the
+//!   R2 grid; for a lattice pair exactly `rd_ign_r2`'s samples). The optimiser only makes swaps
+//!   that lower the loss, so a tile never ends above its start on what it is trained for.
 //! - **Pairs.** Each pair of dimensions is optimised alone, with integrands of its own space
 //!   (`sample_space`); pairs run in parallel. A lone last dimension is optimised with
 //!   thresholds.
-//! - **Frames.** Frame `f` is frame 0 with every shift moved by `f · spp · α`, so the
-//!   integrands come at random offsets and every frame is trained for alike. Under
+//! - **Frames.** A lattice pair's frame `f` is frame 0 with every shift moved by `f · spp · α`,
+//!   so integrands at random offsets train every frame alike; a Sobol pair's frames are other
+//!   nets under the same scrambles, met by integrands at random XOR offsets. Under
 //!   `temporal_filter = { kind = "ema", … }` a pixel's error is its EMA history's over
 //!   `frames` frames.
 //!
@@ -87,6 +90,9 @@ pub struct Trace {
     pub seconds: Vec<Vec<f64>>,
 }
 
+/// One pair's keys (two per pixel), its loss after each sweep and the seconds each took.
+type PairResult = (Vec<[u16; 2]>, Vec<f64>, Vec<f64>);
+
 /// The stopping rule: a sweep that lowered the loss by `gain`, leaving `loss`, ends the
 /// optimisation when `gain < stop_gain · loss` ([`Schedule::stop_gain`]). The loss does not
 /// fall towards zero (each pixel's own error stays), so the rule is relative to what is left.
@@ -135,7 +141,7 @@ pub fn generate_with(
     let weights = sample_weights(p.spp, ema);
     let sobol_pairs = p.sobol_pairs();
     let n = w * h;
-    let results: Vec<(Vec<[u16; 2]>, Vec<f64>, Vec<f64>)> = (0..pairs)
+    let results: Vec<PairResult> = (0..pairs)
         .into_par_iter()
         .map(|pair| {
             let first = 2 * pair as u32;

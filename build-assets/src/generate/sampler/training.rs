@@ -204,7 +204,9 @@ impl Errors {
         weights: &[(u32, f32)],
     ) -> Errors {
         // An integrand's offset moves the points as the pair's structure moves frames: added
-        // for the lattice, XORed for Sobol (frame f is frame 0 so moved, for every pixel).
+        // for the lattice (frame f is frame 0 so moved, for every pixel); XORed for Sobol,
+        // whose frames are other scrambled nets: an XOR keeps a net a net, so the training
+        // sees the integrand's positions relative to a net, as every frame does.
         let sobol = sobol_pairs >> (dims[0] / 2) & 1 == 1;
         let point = move |n: u32, d: u32, key: u16, o: u32| {
             let x = tile_point(n, d, total, key, sobol_pairs);
