@@ -56,12 +56,50 @@ impl GBuffer {
         height: usize,
         shift: [i32; 2],
     ) -> GBuffer {
+        Self::window(scene, tracer, [width, height], width, shift)
+    }
+
+    /// The G-buffer of a `view[0] × view[1]` camera widened to `columns ≥ view[0]` columns
+    /// to the right: the image plane a horizontal pan of up to `columns − view[0]` pixels
+    /// sweeps, each pan's picture one [`crop`](Self::crop) of it.
+    pub fn panned(scene: &Scene, tracer: &Tracer, view: [usize; 2], columns: usize) -> GBuffer {
+        Self::window(scene, tracer, view, columns.max(view[0]), [0, 0])
+    }
+
+    /// Columns `x0 … x0 + width − 1` (all rows): what the camera panned by `x0` pixels sees.
+    pub fn crop(&self, x0: usize, width: usize) -> GBuffer {
+        let cut = |v: &[f32]| crop(v, self.width, x0, width);
+        let rows = |i: usize| (i / width) * self.width + x0 + i % width;
+        GBuffer {
+            width,
+            height: self.height,
+            hit: (0..width * self.height)
+                .map(|i| self.hit[rows(i)])
+                .collect(),
+            position: (0..width * self.height)
+                .map(|i| self.position[rows(i)])
+                .collect(),
+            normal: (0..width * self.height)
+                .map(|i| self.normal[rows(i)])
+                .collect(),
+            depth: cut(&self.depth),
+        }
+    }
+
+    fn window(
+        scene: &Scene,
+        tracer: &Tracer,
+        view: [usize; 2],
+        columns: usize,
+        shift: [i32; 2],
+    ) -> GBuffer {
+        let [width, height] = view;
         let eps = OFFSET * scene.ao_radius;
         let cam = scene.camera;
         let rows: Vec<Vec<(bool, Vec3, Vec3, f32)>> = (0..height)
             .into_par_iter()
             .map(|y| {
-                (0..width)
+                (0..columns)
                     .map(|x| {
                         let dir = cam.ray(
                             x as f32 + shift[0] as f32,
@@ -86,7 +124,7 @@ impl GBuffer {
             .collect();
         let flat: Vec<(bool, Vec3, Vec3, f32)> = rows.into_iter().flatten().collect();
         GBuffer {
-            width,
+            width: columns,
             height,
             hit: flat.iter().map(|p| p.0).collect(),
             position: flat.iter().map(|p| p.1).collect(),
@@ -99,6 +137,14 @@ impl GBuffer {
     pub fn surface_pixels(&self) -> usize {
         self.hit.iter().filter(|&&h| h).count()
     }
+}
+
+/// Columns `x0 … x0 + width − 1` of an image `stride` pixels wide (all rows).
+pub fn crop(v: &[f32], stride: usize, x0: usize, width: usize) -> Vec<f32> {
+    v.chunks_exact(stride)
+        .flat_map(|row| &row[x0..x0 + width])
+        .copied()
+        .collect()
 }
 
 /// The integrands, in the order estimates are returned.

@@ -229,3 +229,21 @@ f 5 8 7 6\nf 9 10 11 12\nf 5 6 10 9\nf 6 7 11 10\nf 7 8 12 11\nf 8 5 9 12\nf 5 5
     assert!(e.contains("missing.obj"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The widened G-buffer's crops are the panned camera's pictures: crop 0 is the static
+/// camera's G-buffer, crop `x0` the one whose image plane is shifted by `x0` pixels.
+#[test]
+fn a_pan_is_a_crop_of_the_widened_view() {
+    let s = Scene::room();
+    let t = Tracer::new(&s.triangles);
+    let wide = GBuffer::panned(&s, &t, [24, 16], 30);
+    assert_eq!((wide.width, wide.height), (30, 16));
+    for x0 in [0usize, 5] {
+        let a = wide.crop(x0, 24);
+        let b = GBuffer::new(&s, &t, 24, 16, [x0 as i32, 0]);
+        assert_eq!(a.hit, b.hit, "pan {x0}");
+        assert_eq!(a.position, b.position, "pan {x0}");
+        assert_eq!(a.normal, b.normal, "pan {x0}");
+        assert_eq!(a.depth, b.depth, "pan {x0}");
+    }
+}

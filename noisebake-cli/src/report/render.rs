@@ -44,6 +44,38 @@ pub const MEASURED: std::ops::Range<u32> = 32..64;
 pub const ONE_FRAME_FRAMES: u32 = 8;
 /// The EMA's blend weight.
 pub const ALPHA: f32 = 0.1;
+/// Samples per pixel per frame measured with the camera moving (for information).
+pub const MOVING_SPPS: [u32; 1] = [4];
+/// The moving camera pans right and back by this many pixels ...
+pub const PAN: usize = 16;
+/// ... this many pixels a frame (a triangle wave: [`pan`]).
+pub const PAN_SPEED: usize = 2;
+
+/// How far the moving camera has panned at `frame`: [`PAN_SPEED`] pixels a frame, right to
+/// [`PAN`] and back.
+pub fn pan(frame: u32) -> usize {
+    let p = (PAN_SPEED * frame as usize) % (2 * PAN);
+    if p > PAN { 2 * PAN - p } else { p }
+}
+
+/// The EMA of errors through a camera pan: pixel `x` of the new frame saw, a frame ago, what
+/// pixel `x + delta` saw (the picture moved by `−delta`); the history is read from there and
+/// blended with `err` by `alpha`, and where that pixel was out of view (disoccluded) the
+/// history restarts from `err`, as a TAA resets history it cannot reproject.
+pub fn reproject(history: &[f32], err: &[f32], width: usize, delta: isize, alpha: f32) -> Vec<f32> {
+    err.iter()
+        .enumerate()
+        .map(|(i, &e)| {
+            let x = (i % width) as isize + delta;
+            if (0..width as isize).contains(&x) {
+                let h = history[i - (i % width) + x as usize];
+                h + alpha * (e - h)
+            } else {
+                e
+            }
+        })
+        .collect()
+}
 /// The reference's samples per pixel, and its replicates.
 pub const REFERENCE_SPP: u32 = 8192;
 /// Independent replicates the reference is the mean of.
@@ -65,7 +97,8 @@ pub struct Row {
     pub family: String,
     /// Samples per pixel per frame.
     pub spp: u32,
-    /// `frame` (one frame, averaged over frames) or `ema` (accumulated).
+    /// `frame` (one frame, averaged over frames), `ema` (accumulated) or `moving` (accumulated
+    /// with the camera panning and the history reprojected).
     pub mode: String,
     /// `ao`, `shadow` or `bounce`.
     pub integrand: String,
@@ -607,13 +640,78 @@ pub fn measure(
     out
 }
 
+/// What a moving camera sees: per pan, the view's G-buffer, its reference and its filters.
+pub struct Panned {
+    views: Vec<(GBuffer, [Vec<f32>; 3], Vec<Filter>)>,
+}
+
+impl Panned {
+    /// The views of every pan `0 … PAN` cut from the widened G-buffer and reference.
+    pub fn new(wide: &GBuffer, reference: &[Vec<f32>; 3], width: usize) -> Panned {
+        Panned {
+            views: (0..=PAN)
+                .map(|x0| {
+                    let g = wide.crop(x0, width);
+                    let r = core::array::from_fn(|c| {
+                        crate::render::crop(&reference[c], wide.width, x0, width)
+                    });
+                    let f = DENOISERS.iter().map(|&d| Filter::new(d, &g)).collect();
+                    (g, r, f)
+                })
+                .collect(),
+        }
+    }
+}
+
+/// `sampler` at `spp` with the camera panning ([`pan`]) and the EMA's history reprojected
+/// ([`reproject`]): the squared errors of the history over [`MEASURED`], and the rays traced.
+/// The sampler is read in screen space, as a game reads it.
+pub fn measure_moving(
+    scene: &Scene,
+    tracer: &Tracer,
+    panned: &Panned,
+    sampler: Sampler<'_>,
+    spp: u32,
+) -> ([[f64; 4]; 3], u64) {
+    let mut history: Option<[Vec<f32>; 3]> = None;
+    let mut out = [[0.0; 4]; 3];
+    let mut rays = 0;
+    let count = (MEASURED.end - MEASURED.start) as f64;
+    for f in 0..FRAMES {
+        let (g, refr, filters) = &panned.views[pan(f)];
+        let (est, r) = render_frame(scene, tracer, g, spp, f, sampler);
+        rays += r;
+        let err: [Vec<f32>; 3] =
+            core::array::from_fn(|c| est[c].iter().zip(&refr[c]).map(|(e, r)| e - r).collect());
+        let next = match history.take() {
+            None => err,
+            Some(h) => {
+                let delta = pan(f) as isize - pan(f - 1) as isize;
+                core::array::from_fn(|c| reproject(&h[c], &err[c], g.width, delta, ALPHA))
+            }
+        };
+        if MEASURED.contains(&f) {
+            let pixels = g.surface_pixels() as f64;
+            for (c, o) in out.iter_mut().enumerate() {
+                for (k, v) in o.iter_mut().enumerate() {
+                    *v += rmse2(&next[c], &filters[k], &g.hit, pixels) / count;
+                }
+            }
+        }
+        history = Some(next);
+    }
+    (out, rays)
+}
+
 /// What the numbers measure.
 pub const READING: &str = "\
 RMSE over the pixels that see a surface of filter(estimate - reference), for AO (dims 0-1,
   cosine-weighted r = sqrt(u), phi = 2 pi v), an area light's soft shadow (dims 2-3) and one
   diffuse bounce with next-event estimation (dims 0-3); after none / Gaussian sigma 1 / box 5x5 /
   a-trous of 3 passes weighted by the G-buffer. frame: one frame (mean over frames); ema: an EMA
-  with alpha 0.1 over 64 frames, frames 32-63. `tile (F)`: a 128x128 sampler tile baked for F.";
+  with alpha 0.1 over 64 frames, frames 32-63; moving (4 spp, for information): the same EMA
+  with the camera panning 2 px a frame right and back over 16 px, the history reprojected and
+  reset where disoccluded. `tile (F)`: a 128x128 sampler tile baked for F.";
 
 /// Runs the report on `scene` and writes `render.json`, `render.png` and the images into `out`.
 pub fn run(scene: &Scene, out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
@@ -621,7 +719,10 @@ pub fn run(scene: &Scene, out: &Path, log: &mut dyn FnMut(&str)) -> Result<Repor
     let start = Instant::now();
     let tracer = Tracer::new(&scene.triangles);
     let [w, h] = SIZE;
-    let g = GBuffer::new(scene, &tracer, w, h, [0, 0]);
+    // One G-buffer and reference for the view widened by the moving camera's pan; the static
+    // camera's are their first columns.
+    let wide = GBuffer::panned(scene, &tracer, SIZE, w + PAN);
+    let g = wide.crop(0, w);
     let filters: Vec<Filter> = DENOISERS.iter().map(|&d| Filter::new(d, &g)).collect();
     log(&format!(
         "  scene `{}`: {} triangles, {w}x{h}, {} pixels see a surface",
@@ -637,8 +738,14 @@ pub fn run(scene: &Scene, out: &Path, log: &mut dyn FnMut(&str)) -> Result<Repor
         rayon::current_num_threads()
     ));
     let t = Instant::now();
-    let (refr, reps) = reference(scene, &tracer, &g, REFERENCE_SPP, REPLICATES, 0);
+    let (wide_ref, wide_reps) = reference(scene, &tracer, &wide, REFERENCE_SPP, REPLICATES, 0);
     let ref_seconds = t.elapsed().as_secs_f64();
+    let cut = |v: &[Vec<f32>; 3]| -> [Vec<f32>; 3] {
+        core::array::from_fn(|c| crate::render::crop(&v[c], wide.width, 0, w))
+    };
+    let refr = cut(&wide_ref);
+    let reps: Vec<[Vec<f32>; 3]> = wide_reps.iter().map(cut).collect();
+    let panned = Panned::new(&wide, &wide_ref, w);
     let standard: Vec<[f64; 4]> = (0..3)
         .map(|c| {
             let r: Vec<&[f32]> = reps.iter().map(|r| r[c].as_slice()).collect();
@@ -659,13 +766,22 @@ pub fn run(scene: &Scene, out: &Path, log: &mut dyn FnMut(&str)) -> Result<Repor
         for e in samplers(spp, if ema { FRAMES } else { ONE_FRAME_FRAMES }, log)? {
             let t = Instant::now();
             let m = measure(scene, &tracer, &g, &filters, &refr, &*e.f, spp, ema);
-            trace_seconds += t.elapsed().as_secs_f64();
             rays += m.rays;
-            let modes: &[(&str, &[[f64; 4]; 3])] = if ema {
-                &[("frame", &m.frame), ("ema", &m.ema)]
+            let moving = if MOVING_SPPS.contains(&spp) {
+                let (errs, r) = measure_moving(scene, &tracer, &panned, &*e.f, spp);
+                rays += r;
+                Some(errs)
             } else {
-                &[("frame", &m.frame)]
+                None
             };
+            trace_seconds += t.elapsed().as_secs_f64();
+            let mut modes: Vec<(&str, &[[f64; 4]; 3])> = vec![("frame", &m.frame)];
+            if ema {
+                modes.push(("ema", &m.ema));
+            }
+            if let Some(errs) = &moving {
+                modes.push(("moving", errs));
+            }
             for (mode, errs) in modes {
                 for c in 0..3 {
                     let row = Row {
@@ -745,7 +861,7 @@ fn fmt4(v: &[f64; 4]) -> String {
 /// The table's header line.
 pub fn header() -> String {
     format!(
-        "  {:<40} {:>4} {:>5}  {:>27}  {:>27}  {:>27}",
+        "  {:<40} {:>4} {:>6}  {:>27}  {:>27}  {:>27}",
         "sampler",
         "spp",
         "mode",
@@ -759,7 +875,7 @@ pub fn header() -> String {
 pub fn line(rows: &[Row]) -> String {
     let e = |r: &Row| format!("{:.5} {:.5} {:.5}", r.rmse[1], r.rmse[2], r.rmse[3]);
     format!(
-        "  {:<40} {:>4} {:>5}  {:>27}  {:>27}  {:>27}",
+        "  {:<40} {:>4} {:>6}  {:>27}  {:>27}  {:>27}",
         rows[0].sampler,
         rows[0].spp,
         rows[0].mode,
@@ -841,4 +957,45 @@ fn plot(r: &Report, path: &Path) -> Result<(), String> {
         y: "RMSE (log scale)".into(),
     };
     line_plot(path, &series, &labels, true).map(|_| ())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The pan moves [`PAN_SPEED`] pixels a frame and stays within `0 … PAN`.
+    #[test]
+    fn the_pan_sweeps_and_returns() {
+        for f in 0..200u32 {
+            assert!(pan(f) <= PAN);
+            if f > 0 {
+                assert_eq!(pan(f).abs_diff(pan(f - 1)), PAN_SPEED, "frame {f}");
+            }
+        }
+        assert_eq!((pan(0), pan(PAN as u32 / PAN_SPEED as u32)), (0, PAN));
+    }
+
+    /// Reprojection follows the picture: a history that is a crop of a fixed world image at
+    /// one pan, blended with the crop at the next pan, is that crop wherever the pixel was in
+    /// view, and restarts from the new frame where it was not.
+    #[test]
+    fn reprojection_follows_the_pan() {
+        let (stride, width, height) = (40usize, 24usize, 3usize);
+        let world: Vec<f32> = (0..stride * height).map(|i| (i * 7 % 13) as f32).collect();
+        for (from, to) in [(4usize, 6usize), (10, 8)] {
+            let h = crate::render::crop(&world, stride, from, width);
+            let now = crate::render::crop(&world, stride, to, width);
+            let noisy: Vec<f32> = now.iter().map(|v| v + 100.0).collect();
+            let delta = to as isize - from as isize;
+            let r = reproject(&h, &noisy, width, delta, 0.25);
+            for (i, (&got, &want)) in r.iter().zip(&now).enumerate() {
+                let x = (i % width) as isize + delta;
+                if (0..width as isize).contains(&x) {
+                    assert_eq!(got, want + 25.0, "pixel {i}: the same world point, blended");
+                } else {
+                    assert_eq!(got, want + 100.0, "pixel {i}: disoccluded, restarted");
+                }
+            }
+        }
+    }
 }
