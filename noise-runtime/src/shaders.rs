@@ -12,7 +12,7 @@
 //! | `nb_ign`, `nb_ign_frame` | [`ldg::ign`](crate::ldg::ign) | within 2⁻²³ (the CPU rounds an `f64`) |
 //! | `nb_hash2`, `nb_hash3`, `nb_pcg` | [`hash::hash2`](crate::hash::hash2), [`hash::pcg`](crate::hash::pcg) | bit for bit |
 //! | `nb_ign_r2`, `nb_rd2_ign_r2` … `nb_rd4_ign_r2`, `nb_rd2`, `nb_rd3`, `nb_sobol_owen` | [`sampler`](crate::sampler) | bit for bit (32-bit fractions) |
-//! | `nb_sampler_tile`, `nb_sampler_tile_bits`, `nb_tile_point`, `nb_tile_step`, `nb_sobol2` | [`SamplerTile::sample`](crate::SamplerTile::sample), [`sampler::tile_point`](crate::sampler::tile_point), [`sampler::sobol2`](crate::sampler::sobol2) | bit for bit (the keys are integers) |
+//! | `nb_sampler_tile`, `nb_sampler_tile_bits`, `nb_tile_point`, `nb_tile_generator`, `nb_sobol2` | [`SamplerTile::sample`](crate::SamplerTile::sample), [`sampler::tile_point`](crate::sampler::tile_point), [`sampler::sobol2`](crate::sampler::sobol2) | bit for bit (the keys are integers) |
 //! | `nb_disk_polar`, `nb_cosine_hemisphere_polar`, `nb_sampler_tile_cosine_hemisphere` | [`warp::disk_polar`](crate::warp::disk_polar), [`warp::cosine_hemisphere_polar`](crate::warp::cosine_hemisphere_polar), [`SamplerTile::cosine_hemisphere`](crate::SamplerTile::cosine_hemisphere) | within `2^-10` per component (below) |
 //! | `nb_perlin3`, `nb_fbm3`, `nb_perlin3_estimate`, `nb_fbm3_estimate` | [`Perlin`](crate::stochastic::Perlin), [`Fbm`](crate::stochastic::Fbm) | within tolerances (below) |
 //! | `nb_cnj2_closest` | [`Cnj2::closest`](crate::cnj::Cnj2::closest) | same site; point within tolerance |

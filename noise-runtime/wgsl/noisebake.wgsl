@@ -410,19 +410,12 @@ fn nb_sobol_owen(p: vec2<i32>, frame: u32, seed: u32) -> vec4<f32> {
     ));
 }
 
-// The R_D sequence's step in dimension d of a dims-dimensional tile, floor(2^32 / phi_D^(d+1))
-// (TILE_STEPS: rows 1 to 8 one after another).
-fn nb_tile_step(dims: u32, d: u32) -> u32 {
-    var steps = array<u32, 36>(
-        0x9e3779b9u, 0xc13fa9a9u, 0x91e10da5u, 0xd1b54a32u, 0xabc98388u, 0x8cb92ba7u,
-        0xdb4f0b91u, 0xbbe05633u, 0xa0f2ec75u, 0x89e18285u, 0xe19b01aau, 0xc6d1d6c8u,
-        0xaf36d01eu, 0x9a69443fu, 0x881403b9u, 0xe60e2b72u, 0xcebd76d9u, 0xb9c9aa3au,
-        0xa6f5777fu, 0x9609c71eu, 0x86d516e5u, 0xe95e1dd1u, 0xd4bc74e1u, 0xc1edbc5bu,
-        0xb0c8ac50u, 0xa127a31cu, 0x92e852c8u, 0x85eb75c3u, 0xebedeed9u, 0xd96eb1a8u,
-        0xc862b36du, 0xb8acd90cu, 0xaa324f90u, 0x9cda5e69u, 0x908e3d2cu, 0x8538ecb5u,
+// The tiles' rank-1 lattice generator, one odd multiplier per dimension (TILE_GENERATOR).
+fn nb_tile_generator(d: u32) -> u32 {
+    var g = array<u32, 8>(
+        1u, 47597u, 65513u, 3118222261u, 65447u, 3115080859u, 65169u, 3101848893u,
     );
-    let row = clamp(dims, 1u, 8u);
-    return steps[row * (row - 1u) / 2u + d % row];
+    return g[d & 7u];
 }
 
 // Dimension `axis` (0 or 1) of point n of the Sobol sequence as a 32-bit fraction
@@ -447,14 +440,15 @@ fn nb_sobol2(n: u32, axis: u32) -> u32 {
 
 // Dimension d of sample n of a pixel whose key in that dimension is `key`, in a dims-dimensional
 // tile whose pairs flagged in `sobol_pairs` (bit p for dimensions 2p, 2p + 1) run Sobol
-// (sampler::tile_point): n * step + key * 2^16 wrapping for a lattice dimension,
+// (sampler::tile_point): reverseBits(n) * generator + key * 2^16 wrapping for a lattice
+// dimension (the rank-1 lattice in radical-inverse order),
 // owen(sobol2(n, d % 2), mix(key * 2^16 + d)) for a Sobol one.
 fn nb_tile_point(n: u32, d: u32, dims: u32, key: u32, sobol_pairs: u32) -> u32 {
     let dd = d % clamp(dims, 1u, 8u);
     if (((sobol_pairs >> (dd / 2u)) & 1u) != 0u) {
         return nb_owen(nb_sobol2(n, dd), nb_mix((key << 16u) | dd));
     }
-    return n * nb_tile_step(dims, dd) + (key << 16u);
+    return reverseBits(n) * nb_tile_generator(dd) + (key << 16u);
 }
 
 // Dimension d of sample i of pixel p in frame `frame` of a baked sampler tile, as a 32-bit

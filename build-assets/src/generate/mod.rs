@@ -21,7 +21,7 @@ use vac::{Axis, VacConfig};
 
 /// Version of the generators' output. Bump it whenever any generator's bytes change for an
 /// unchanged spec: the cache key includes it, so stale entries are never served.
-pub const ALGORITHM_VERSION: u32 = 19;
+pub const ALGORITHM_VERSION: u32 = 20;
 
 /// Progress callback: `(done, total)` texels ranked.
 pub type Progress<'a> = &'a mut dyn FnMut(u64, u64);

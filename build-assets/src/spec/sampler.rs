@@ -1,6 +1,6 @@
 //! The `sampler` kind: a tile of per-pixel shifts for `spp` samples × `sample_dims` dimensions
-//! per pixel (`noise_runtime::SamplerTile`: every pixel runs the R_D sequence rotated by its
-//! shift), arranged so that the pixels' Monte Carlo errors are blue under the scene's denoiser,
+//! per pixel (`noise_runtime::SamplerTile`: every pixel runs a rank-1 lattice or Owen-scrambled
+//! Sobol per pair, moved by its keys), arranged so that the pixels' Monte Carlo errors are blue under the scene's denoiser,
 //! in the space the ray uses, on one frame or accumulated. Its parameters, their parsing,
 //! defaults and validation; the generator (`crate::generate::sampler`) reads them.
 

@@ -19,7 +19,8 @@
 //!   dimensions.
 //!
 //! - [`SamplerTile`]: the baked form (kind `sampler`): `rd_ign_r2`'s structure — every pixel
-//!   runs the R_D sequence, rotated by a shift of its own — with the shifts arranged at build
+//!   runs one sequence per pair (a rank-1 lattice, or Owen-scrambled Sobol for `square`
+//!   pairs), moved by keys of its own — with the keys arranged at build
 //!   time so that the pixels' errors are blue under the scene's denoiser, in the space the
 //!   ray uses, on one frame or accumulated (Heitz et al. 2019's goal; Belcour and Heitz 2021's
 //!   lattice with optimised shifts).
@@ -28,7 +29,7 @@
 //! `nb_rd3_ign_r2` and `nb_sobol_owen` in the WGSL library give the same bits.
 
 mod tile;
-pub use tile::{MAX_TILE_DIMS, SamplerTile, TILE_STEPS, sobol2, tile_point};
+pub use tile::{MAX_TILE_DIMS, SamplerTile, TILE_GENERATOR, sobol2, tile_point};
 
 use crate::hash::hash2;
 use crate::sequence::{GOLDEN, R2_A1, R2_A2, frac_mul, to_unit};

@@ -3,8 +3,8 @@
 //! pixels' Monte Carlo errors are blue under the declared spatial filter, in the space each
 //! pair of dimensions is warped into, on every frame or accumulated by an EMA.
 //!
-//! Every pixel runs the same low-discrepancy sequence per pair, moved by its key: the R_D
-//! rank-1 lattice rotated by it for warped pairs (Belcour and Heitz's structure, 2021, "Lessons
+//! Every pixel runs the same low-discrepancy sequence per pair, moved by its key: a
+//! rank-1 lattice in radical-inverse order rotated by it for warped pairs (Belcour and Heitz's structure, 2021, "Lessons
 //! Learned and Improvements when Building Screen-Space Samplers with Blue-Noise Error
 //! Distribution": progressive in time for free), the Sobol (0, 2)-sequence Owen-scrambled with
 //! it as seed for `square` pairs (the structure of Heitz et al.'s tables). What the generator
@@ -15,12 +15,13 @@
 //! and the swaps.
 //!
 //! - **Start.** The free construction `rd_ign_r2`'s shifts (interleaved gradient noise and the
-//!   R2 grid; for a lattice pair exactly `rd_ign_r2`'s samples). The optimiser only makes swaps
+//!   R2 grid; for a lattice pair, `rd_ign_r2`'s rotations of the tile's lattice). The optimiser only makes swaps
 //!   that lower the loss, so a tile never ends above its start on what it is trained for.
 //! - **Pairs.** Each pair of dimensions is optimised alone, with integrands of its own space
 //!   (`sample_space`); pairs run in parallel. A lone last dimension is optimised with
 //!   thresholds.
-//! - **Frames.** A lattice pair's frame `f` is frame 0 with every shift moved by `f · spp · α`,
+//! - **Frames.** A lattice pair's frame `f` is frame 0 with every shift moved by the same
+//!   amount (`reverse_bits(f · spp) · g`, exactly for a power-of-two `spp`),
 //!   so integrands at random offsets train every frame alike; a Sobol pair's frames are other
 //!   nets under the same scrambles, met by integrands at random XOR offsets. Under
 //!   `temporal_filter = { kind = "ema", … }` a pixel's error is its EMA history's over

@@ -6,6 +6,14 @@
 //! an integrand's error in place of a sample value). With `A = g ⋆ g` the filter's
 //! autocorrelation, `L = Σ_x e(x)·B(x)` with the field `B = A ∗ e`.
 //!
+//! **The à-trous at every scale.** A denoiser's edge-stopping weights cut its à-trous short
+//! near edges and creases (Schied et al. 2017, §4.4), where occlusion's error lives, so its
+//! effective filter there is its first passes, and only on open surfaces all of them. For
+//! `atrous` with `N` passes the loss is therefore `Σ_{k=1..N} ‖g_k ∗ e‖² / ‖g_k‖⁴`, `g_k` the
+//! first `k` passes and `‖g_k‖⁴ = (Σ g_k²)²` its gain on white noise, so each scale weighs
+//! alike: `A = Σ_k A_k / ‖g_k‖⁴`. Trained on the full filter alone, a tile traded away the
+//! fine scales and lost to the free lattice behind the edge-stopped denoiser.
+//!
 //! **Moves.** Swaps of two pixels' shifts, so the tile keeps the start's set of shifts (a
 //! stratified set: every shift is as good as any other on its own) and only their arrangement
 //! changes. Swapping `p` and `q` moves `e(p)` by `δ = e(q) − e(p)` and `e(q)` by `−δ`, which
@@ -56,6 +64,41 @@ fn kept_autocorrelation(spatial: Filter, n: usize) -> Vec<f32> {
     a.iter()
         .map(|&v| if v.abs() >= cut { v as f32 } else { 0.0 })
         .collect()
+}
+
+/// The loss's autocorrelation on the `w × h` torus, row by row: the sum of the separable
+/// terms of [`scales`], each with its axes cut at [`SUPPORT_CUTOFF`], in `f32`.
+fn kept_table(spatial: Filter, w: usize, h: usize) -> Vec<f32> {
+    let mut table = vec![0.0f32; w * h];
+    for (weight, filter) in scales(spatial) {
+        let (ax, ay) = (
+            kept_autocorrelation(filter, w),
+            kept_autocorrelation(filter, h),
+        );
+        for (dy, &vy) in ay.iter().enumerate() {
+            for (dx, &vx) in ax.iter().enumerate() {
+                if vx != 0.0 && vy != 0.0 {
+                    table[dy * w + dx] += weight * (vx * vy);
+                }
+            }
+        }
+    }
+    table
+}
+
+/// The filters whose error energies the loss sums, with their weights: `spatial` alone, or
+/// for the à-trous each pass count `1..=N` over its white-noise gain (see the module's doc).
+fn scales(spatial: Filter) -> Vec<(f32, Filter)> {
+    match spatial {
+        Filter::Atrous { passes } if passes > 1 => (1..=passes)
+            .map(|k| {
+                let f = Filter::Atrous { passes: k };
+                let gain: f64 = f.taps().iter().map(|t| t * t).sum();
+                ((1.0 / (gain * gain)) as f32, f)
+            })
+            .collect(),
+        _ => vec![(1.0, spatial)],
+    }
 }
 
 /// Offsets per axis the field keeps for `spatial` on a ring of `n` ([`SUPPORT_CUTOFF`]): what
@@ -118,22 +161,20 @@ struct Field {
     h: usize,
     len: usize,
     values: Vec<f32>,
-    ax: Vec<f32>,
-    ay: Vec<f32>,
+    /// `A` on the torus, row by row.
+    table: Vec<f32>,
     support: Vec<(usize, usize, f32)>,
 }
 
 impl Field {
     fn new(spatial: Filter, w: usize, h: usize, e: &Errors) -> Field {
-        let (ax, ay) = (
-            kept_autocorrelation(spatial, w),
-            kept_autocorrelation(spatial, h),
-        );
+        let table = kept_table(spatial, w, h);
         let mut support = Vec::new();
-        for (dy, &vy) in ay.iter().enumerate() {
-            for (dx, &vx) in ax.iter().enumerate() {
-                if vx != 0.0 && vy != 0.0 {
-                    support.push((dx, dy, vx * vy));
+        for dy in 0..h {
+            for dx in 0..w {
+                let a = table[dy * w + dx];
+                if a != 0.0 {
+                    support.push((dx, dy, a));
                 }
             }
         }
@@ -143,8 +184,7 @@ impl Field {
             h,
             len,
             values: vec![0.0; w * h * len],
-            ax,
-            ay,
+            table,
             support,
         };
         for p in 0..w * h {
@@ -158,7 +198,19 @@ impl Field {
         let (w, h) = (self.w, self.h);
         let dx = (p % w + w - q % w) % w;
         let dy = (p / w + h - q / w) % h;
-        self.ax[dx] * self.ay[dy]
+        self.table[dy * w + dx]
+    }
+
+    /// The offsets per axis (`0..=n/2`) that `A` reaches: whether column (`x`) or row (`y`)
+    /// `d` holds a kept entry.
+    fn reach(&self) -> (usize, usize) {
+        let (w, h) = (self.w, self.h);
+        let farthest = |n: usize, kept: &dyn Fn(usize) -> bool| -> usize {
+            (0..=n / 2).filter(|&d| kept(d)).max().unwrap_or(0).max(2)
+        };
+        let rx = farthest(w, &|d| (0..h).any(|dy| self.table[dy * w + d] != 0.0));
+        let ry = farthest(h, &|d| (0..w).any(|dx| self.table[d * w + dx] != 0.0));
+        (rx, ry)
     }
 
     fn at(&self, p: usize) -> &[f32] {
@@ -204,15 +256,7 @@ pub(super) fn optimise(
     let mut curve = vec![loss];
     let mut seconds = vec![start.elapsed().as_secs_f64()];
     // Partners within the filter's reach: the autocorrelation's kept half-width, at least 2.
-    let reach = |a: &[f32]| -> usize {
-        let l = a.len();
-        (0..=l / 2)
-            .filter(|&d| a[d] != 0.0)
-            .max()
-            .unwrap_or(0)
-            .max(2)
-    };
-    let (rx, ry) = (reach(&field.ax), reach(&field.ay));
+    let (rx, ry) = field.reach();
     let mut rng = SplitMix64::new(seed);
     let a0 = field.between(0, 0);
     let mut delta = vec![0.0f32; errors.len];
