@@ -244,7 +244,14 @@ pub fn sobol(index: u32, d: usize) -> u32 {
 #[must_use]
 #[inline(always)]
 pub fn owen(x: u32, seed: u32) -> u32 {
-    let mut v = x.reverse_bits();
+    owen_reversed(x.reverse_bits(), seed)
+}
+
+/// [`owen`] of the fraction whose bits, reversed, are `v`: a caller that has the reversed
+/// bits at hand (the Sobol tables of a baked tile) skips one reversal.
+#[must_use]
+#[inline(always)]
+pub(crate) fn owen_reversed(mut v: u32, seed: u32) -> u32 {
     v ^= v.wrapping_mul(0x3d20_adea);
     v = v.wrapping_add(seed);
     v = v.wrapping_mul((seed >> 16) | 1);

@@ -85,6 +85,21 @@ pub const TILE_GENERATOR: [u32; MAX_TILE_DIMS] = [
 /// selects. Four lookups replace a 32-step bit loop.
 const SOBOL1_BYTES: [[u32; 256]; 4] = sobol1_bytes();
 
+/// [`SOBOL1_BYTES`] with every entry's bits reversed, for [`sobol2_reversed`].
+const SOBOL1_BYTES_REVERSED: [[u32; 256]; 4] = {
+    let mut t = SOBOL1_BYTES;
+    let mut j = 0;
+    while j < 4 {
+        let mut b = 0;
+        while b < 256 {
+            t[j][b] = t[j][b].reverse_bits();
+            b += 1;
+        }
+        j += 1;
+    }
+    t
+};
+
 const fn sobol1_bytes() -> [[u32; 256]; 4] {
     let mut v = [0u32; 32];
     v[0] = 1 << 31;
@@ -131,6 +146,20 @@ pub const fn sobol2(n: u32, axis: u32) -> u32 {
     }
 }
 
+/// [`sobol2`]`(n, axis)` with its bits reversed, what [`super::owen`] works on: `n` itself for
+/// axis 0, the reversed tables for axis 1, so the scramble needs no reversal before it.
+#[inline(always)]
+const fn sobol2_reversed(n: u32, axis: u32) -> u32 {
+    if axis & 1 == 0 {
+        n
+    } else {
+        SOBOL1_BYTES_REVERSED[0][(n & 0xff) as usize]
+            ^ SOBOL1_BYTES_REVERSED[1][(n >> 8 & 0xff) as usize]
+            ^ SOBOL1_BYTES_REVERSED[2][(n >> 16 & 0xff) as usize]
+            ^ SOBOL1_BYTES_REVERSED[3][(n >> 24) as usize]
+    }
+}
+
 /// Dimension `d` of sample `n` of a pixel whose shift in that dimension is `key`, for a tile
 /// of `dims` dimensions whose pairs flagged in `sobol_pairs` (bit `p` for dimensions `2p`,
 /// `2p + 1`) run the Sobol sequence, as a 32-bit fraction:
@@ -149,7 +178,8 @@ pub fn tile_point(n: u32, d: u32, dims: u32, key: u16, sobol_pairs: u8) -> u32 {
     let d = d % dims.clamp(1, MAX_TILE_DIMS as u32);
     let shift = (key as u32) << 16;
     if sobol_pairs >> (d / 2) & 1 == 1 {
-        super::owen(sobol2(n, d), crate::hash::mix(shift | d))
+        // `owen(sobol2(n, d), seed)`, one bit reversal spared.
+        super::owen_reversed(sobol2_reversed(n, d), crate::hash::mix(shift | d))
     } else {
         n.reverse_bits()
             .wrapping_mul(TILE_GENERATOR[d as usize])
@@ -263,7 +293,8 @@ mod tests {
     }
 
     /// `sobol2`'s byte tables give the Sobol sequence's second dimension: the direction numbers
-    /// applied bit by bit, for indices across all four bytes.
+    /// applied bit by bit, for indices across all four bytes; their bit-reversed twins give
+    /// the scramble the same values.
     #[test]
     fn sobol_tables_are_the_bit_loop() {
         let slow = |mut n: u32| {
@@ -281,6 +312,14 @@ mod tests {
         for _ in 0..2000 {
             assert_eq!(sobol2(n, 1), slow(n), "{n:#x}");
             assert_eq!(sobol2(n, 0), n.reverse_bits());
+            for axis in 0..2 {
+                assert_eq!(sobol2_reversed(n, axis), sobol2(n, axis).reverse_bits());
+                let seed = n ^ 0x1234_5678;
+                assert_eq!(
+                    super::super::owen_reversed(sobol2_reversed(n, axis), seed),
+                    super::super::owen(sobol2(n, axis), seed)
+                );
+            }
             n = n.wrapping_mul(0x9e37_79b9).wrapping_add(0x7f4a_7c15);
         }
         // The first points: 0, 1/2, then (1/4, 3/4), (3/4, 1/4).
