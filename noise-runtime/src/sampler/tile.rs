@@ -443,16 +443,6 @@ mod tests {
             .collect();
         block.sort_unstable();
         assert_eq!(block, (0..16).collect::<Vec<u32>>());
-        let r4 = |k: u32| (k as f64 * 0.7338) % 1.0;
-        let kronecker = (1..16)
-            .map(|k| {
-                let (x, y) = ((k as f64 * 0.8567) % 1.0, r4(k));
-                let (x, y) = (x.min(1.0 - x), y.min(1.0 - y));
-                (x * x + y * y).sqrt()
-            })
-            .fold(f64::MAX, f64::min)
-            / (2.0 / (3f64.sqrt() * 16.0)).sqrt();
-        assert!(kronecker < 0.7, "{kronecker}");
     }
 
     /// A key moves its own pixel and dimension only, and the lookup is
