@@ -89,10 +89,10 @@ pub fn obtain(
             if let Some(line) = crate::generate::estimate::announcement(spec, threshold) {
                 announce(&line);
             }
-            cache.get_or_insert_with(spec, || crate::generate(spec, progress))?
+            cache.get_or_insert_with(spec, || crate::generate::bake_texture(spec, progress))?
         }
     };
-    if let Some(open @ 1..) = crate::generate::open_windows_of(spec, &entry.texture) {
+    if let open @ 1.. = entry.open_windows {
         cache.warnings.push(Warning::OpenWindows {
             name: spec.name.clone(),
             open,

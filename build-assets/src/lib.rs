@@ -25,6 +25,6 @@ pub mod texture;
 
 pub use bake::{Bake, BakeError, bake, bake_or_exit};
 pub use error::{Error, Warning};
-pub use generate::{ALGORITHM_VERSION, generate};
+pub use generate::{ALGORITHM_VERSION, bake_texture, generate};
 pub use spec::{SpecError, TextureSpec};
-pub use texture::Texture;
+pub use texture::{Baked, Texture};

@@ -26,3 +26,24 @@ impl Texture {
         decode_unit(&self.data, self.format.scalar)
     }
 }
+
+/// What a generation hands the cache: the texture and what the generator knows of it that the
+/// cache records in the entry's header, so that reading an entry never runs a generator.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Baked {
+    /// The texture.
+    pub texture: Texture,
+    /// How many 3 × 3 windows of a `taa` mask's slices lack a low or a high value
+    /// (`generate::open_windows_of`); 0 for every other texture.
+    pub open_windows: u64,
+}
+
+impl From<Texture> for Baked {
+    /// A texture with nothing more to record (every kind but a `taa` mask).
+    fn from(texture: Texture) -> Baked {
+        Baked {
+            texture,
+            open_windows: 0,
+        }
+    }
+}

@@ -250,7 +250,9 @@ fn hits_are_served_before_any_write_is_tried() {
     std::fs::remove_file(&lock).unwrap();
     std::fs::create_dir(&lock).unwrap();
     let e = c
-        .get_or_insert_with(&s, || panic!("generated on a hit"))
+        .get_or_insert_with(&s, || -> build_assets::Texture {
+            panic!("generated on a hit")
+        })
         .unwrap();
     assert_eq!(e.source, Source::Hit);
     assert!(c.warnings.is_empty(), "{:?}", c.warnings);
@@ -310,7 +312,7 @@ fn blocked_entry_paths_cost_the_cache_not_the_build() {
 fn crafted_headers_are_corrupt_not_panics() {
     let s = spec(STBN);
     let t = generate(&s, &mut |_, _| {});
-    let good = encode(&t, &s);
+    let good = encode(&t.into(), &s);
     assert!(decode(&good, &s).is_ok());
     let set = |at: usize, v: u64| {
         let mut b = good.clone();
@@ -745,7 +747,7 @@ fn writes_leave_a_gitignore_and_hits_record_their_use() {
         .modified()
         .unwrap();
     let e = Cache::new(&dir)
-        .get_or_insert_with(&s, || panic!("a hit"))
+        .get_or_insert_with(&s, || -> build_assets::Texture { panic!("a hit") })
         .unwrap();
     assert_eq!(e.source, Source::Hit);
     let t = std::fs::metadata(&used).unwrap().modified().unwrap();
@@ -864,7 +866,9 @@ fn fallback_hits_are_promoted_into_the_cache_directory() {
         .unwrap();
     let mut c = Cache::new(dir.join("committed"));
     c.fallback = Some(dir.join("fallback"));
-    let e = c.get_or_insert_with(&s, || panic!("a hit")).unwrap();
+    let e = c
+        .get_or_insert_with(&s, || -> build_assets::Texture { panic!("a hit") })
+        .unwrap();
     assert_eq!(e.source, Source::Hit);
     let promoted = Cache::path_in(&dir.join("committed"), &s);
     assert_eq!(e.path.as_deref(), Some(promoted.as_path()));
@@ -882,10 +886,12 @@ fn entries_of_another_canonical_format_are_stale() {
     let dir = tmp("oldformat");
     let text = "kind=fast;dims=[16,16,4];seed=0;format=u8;sample_space=scalar;distribution=Uniform;spatial=Gauss { sigma: 1.3435 };temporal=Ema { alpha: 0.1, beta: 0.1 };combine=Product;iterations=None;start=ign";
     let data = vec![7u8; 16 * 16 * 4];
-    let mut bytes = b"NBAKE\x00\x03\x00".to_vec();
+    let mut bytes = b"NBAKE\x00\x04\x00".to_vec();
+    // The data's hash covers the open windows after it (0 here).
+    let hashed: Vec<u8> = data.iter().copied().chain([0; 8]).collect();
     for v in [
         data.len() as u64,
-        fnv64(&data),
+        fnv64(&hashed),
         text.len() as u64,
         fnv64(text.as_bytes()),
     ] {
@@ -914,11 +920,13 @@ fn entries_of_another_canonical_format_are_stale() {
     );
 }
 
-/// An entry records the open TAA windows of its texture in the header (bytes 40–47, entry
-/// format 3), `cache list` shows them, and a header that disagrees with the texture is corrupt.
+/// An entry records the open TAA windows the bake counted in its header (bytes 40–47), under
+/// the data's hash (entry format 4): `cache list` shows them, a hit returns them without
+/// re-counting, and a header that lies about them fails the checksum.
 #[test]
 fn entries_record_open_taa_windows() {
     use build_assets::cache::open_windows;
+    use build_assets::{Baked, bake_texture};
     let s = spec(
         "kind = \"fast\"\ndims = [16, 16, 2]\ntemporal_filter = { kind = \"taa\", coverage = 0.2 }",
     );
@@ -929,22 +937,71 @@ fn entries_record_open_taa_windows() {
         format: s.format,
         data: vec![128; 16 * 16 * 2],
     };
-    let bytes = encode(&t, &s);
-    assert_eq!(&bytes[..8], b"NBAKE\x00\x03\x00");
+    let counted = build_assets::generate::open_windows_of(&s, &t);
+    assert_eq!(counted, Some(512));
+    let baked = Baked {
+        texture: t.clone(),
+        open_windows: 512,
+    };
+    let bytes = encode(&baked, &s);
+    assert_eq!(&bytes[..8], b"NBAKE\x00\x04\x00");
     assert_eq!(open_windows(&bytes), Some(512));
-    assert_eq!(decode(&bytes, &s).unwrap().data, t.data);
+    assert_eq!(decode(&bytes, &s).unwrap(), baked);
     let mut lied = bytes.clone();
     lied[40] = 0;
     lied[41] = 0;
-    assert!(matches!(
-        decode(&lied, &s),
-        Err(Corrupt::OpenWindows {
-            held: 0,
-            counted: 512
-        })
-    ));
+    assert_eq!(open_windows(&lied), Some(0));
+    assert_eq!(decode(&lied, &s), Err(Corrupt::Hash));
+    // Through the cache: the bake's count is recorded on a miss and read back on a hit.
+    let dir = std::env::temp_dir().join(format!("nb-open-windows-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let made = bake_texture(&s, &mut |_, _| {});
+    let want = build_assets::generate::open_windows_of(&s, &made.texture).unwrap();
+    assert_eq!(made.open_windows, want);
+    let miss = Cache::new(&dir)
+        .get_or_insert_with(&s, || made.clone())
+        .unwrap();
+    assert_eq!((miss.source, miss.open_windows), (Source::Generated, want));
+    let hit = Cache::new(&dir)
+        .get_or_insert_with(&s, || -> Baked { panic!("generated on a hit") })
+        .unwrap();
+    assert_eq!((hit.source, hit.open_windows), (Source::Hit, want));
+    assert_eq!(hit.texture, made.texture);
+    std::fs::remove_dir_all(&dir).ok();
     // Any other kind records 0.
     let w = spec("kind = \"white\"\ndims = [8, 8]");
     let wt = generate(&w, &mut |_, _| {});
-    assert_eq!(open_windows(&encode(&wt, &w)), Some(0));
+    assert_eq!(open_windows(&encode(&wt.into(), &w)), Some(0));
+}
+
+/// The cache knows entries, not generators: no file under `src/cache/` calls into
+/// `generate` (the key names `ALGORITHM_VERSION`, the one thing it may take from there).
+#[test]
+fn the_cache_never_calls_a_generator() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/cache");
+    let mut files = 0;
+    for f in std::fs::read_dir(&dir).unwrap() {
+        let path = f.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        files += 1;
+        for (n, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            for (at, _) in code.match_indices("generate::") {
+                let rest = &code[at + "generate::".len()..];
+                assert!(
+                    rest.starts_with("ALGORITHM_VERSION"),
+                    "{}:{}: the cache calls into the generators: {line}",
+                    path.display(),
+                    n + 1
+                );
+            }
+            assert!(
+                !code.contains("generate(") && !code.contains("open_windows_of"),
+                "{}:{}: {line}",
+                path.display(),
+                n + 1
+            );
+        }
+    }
+    assert!(files >= 4, "read {files} files of {}", dir.display());
 }

@@ -156,13 +156,13 @@ proptest! {
             std::sync::OnceLock::new();
         let (spec, good) = ENTRY.get_or_init(|| {
             let spec = parse_toml(SPEC).unwrap().textures.remove(0);
-            let entry = encode(&generate(&spec, &mut |_, _| {}), &spec);
+            let entry = encode(&generate(&spec, &mut |_, _| {}).into(), &spec);
             (spec, entry)
         });
         let bad = mutate(good, &edits);
         if let Ok(t) = decode(&bad, spec) {
             prop_assert_eq!(&bad, good);
-            prop_assert_eq!(t.data.len(), spec.byte_len());
+            prop_assert_eq!(t.texture.data.len(), spec.byte_len());
         }
     }
 }

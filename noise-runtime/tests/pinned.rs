@@ -401,6 +401,18 @@ fn samplers_are_pinned() {
             0x3f4f2f97, 0x3c8d0da0,
         ],
     );
+    check(
+        "r2_pairs",
+        bits(
+            at.iter()
+                .flat_map(|&(x, y, f)| sampler::r2_pairs::<4>(x, y, f)),
+        ),
+        &[
+            0x00000000, 0x00000000, 0x00000000, 0x00000000, 0x3e0a23f0, 0x3d5c2860, 0x3f449f1c,
+            0x3f59db99, 0x3e56847c, 0x3f7f20de, 0x3eca5118, 0x3e79f3d4, 0x3ec704ea, 0x3d900cf8,
+            0x3f654936, 0x3e35cc98,
+        ],
+    );
     // A baked tile's points: the rank-1 lattice's point n in dimension d (n bit-reversed times
     // the generator) shifted by a key (lattice pairs), or Sobol's Owen-scrambled by it (pairs
     // flagged in the last field); both checked against a computation outside the crate.

@@ -360,6 +360,12 @@ fn nb_rd4_ign_r2(p: vec2<i32>, frame: u32) -> vec4<f32> {
     return nb_to_unit4(nb_rd4_bits(frame) + nb_sampler_grids(p, 0u));
 }
 
+// The free baseline: a rank-1 R2 lattice per pair of dimensions, each pair walking R2 from
+// its own per-pixel shifts, the grids of frame 0 (sampler::r2_pairs; .xy for one pair).
+fn nb_r2_pairs(p: vec2<i32>, index: u32) -> vec4<f32> {
+    return nb_to_unit4(nb_r2_point(index).xyxy + nb_sampler_grids(p, 0u));
+}
+
 // The first four dimensions of the index-th Sobol point as 32-bit fractions, the direction
 // numbers made by their recurrences as the index's bits are read (dimension 0 is the radical
 // inverse; 1–3 from x + 1, x² + x + 1 and x³ + x + 1).

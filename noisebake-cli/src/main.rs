@@ -142,6 +142,11 @@ enum Command {
         /// and light are placed around its bounds).
         #[arg(long)]
         scene: Option<PathBuf>,
+        /// For `render` and `taa`: also write the results as a Markdown document stamped with
+        /// the machine, date, commit and command (what `docs/measured/render.md` and
+        /// `taa.md` are).
+        #[arg(long)]
+        markdown: Option<PathBuf>,
     },
 }
 
@@ -251,11 +256,16 @@ fn main() -> ExitCode {
             paper,
             quick,
             scene,
+            markdown,
         } => {
             if section == "render" {
-                render_report(&out, scene.as_deref())
+                render_report(&out, scene.as_deref(), full, markdown.as_deref())
             } else if scene.is_some() {
                 Err("--scene is for `report render`".to_string())
+            } else if section == "taa" {
+                taa_report(&out, markdown.as_deref())
+            } else if markdown.is_some() {
+                Err("--markdown is for `report render` and `report taa`".to_string())
             } else {
                 report(&section, json.as_deref(), &out, [full, paper], quick)
             }
@@ -632,7 +642,12 @@ fn analyze(file: &Path, channels_last: bool, scalar: bool, json: bool) -> Result
 }
 
 /// `report render`: the samplers in a ray-traced scene (feature `render`, on by default).
-fn render_report(out: &Path, scene: Option<&Path>) -> Result<(), String> {
+fn render_report(
+    out: &Path,
+    scene: Option<&Path>,
+    full: bool,
+    markdown: Option<&Path>,
+) -> Result<(), String> {
     #[cfg(feature = "render")]
     {
         use noisebake_cli::render::scene::Scene;
@@ -648,7 +663,13 @@ fn render_report(out: &Path, scene: Option<&Path>) -> Result<(), String> {
         println!(
             "  (Heitz et al. 2019's tables and OpenQMC are measured with `--features peers`: cargo run --release -p noisebake-cli --features peers -- report render)"
         );
-        let r = render::run(&scene, out, &mut |s| println!("{s}"))?;
+        let options = render::Options { full };
+        let r = render::run(&scene, out, options, &mut |s| println!("{s}"))?;
+        if let Some(path) = markdown {
+            let md = render::markdown(&r, &noisebake_cli::report::stamp::Stamp::now());
+            noisebake_cli::report::stamp::write(path, &md)?;
+            println!("  wrote {}", path.display());
+        }
         println!(
             "  {:.0} s in all; wrote {}, {} and the render-*.png images",
             r.seconds,
@@ -659,9 +680,35 @@ fn render_report(out: &Path, scene: Option<&Path>) -> Result<(), String> {
     }
     #[cfg(not(feature = "render"))]
     {
-        let _ = (out, scene);
+        let _ = (out, scene, full, markdown);
         Err("this noisebake was built without the `render` feature (the ray tracer)".to_string())
     }
+}
+
+/// `report taa`, and with `markdown` its stamped Markdown document.
+fn taa_report(out: &Path, markdown: Option<&Path>) -> Result<(), String> {
+    use noisebake_cli::report::stamp::{Stamp, write};
+    use noisebake_cli::report::taa;
+    let mut text = String::new();
+    for l in taa::READING.lines() {
+        println!("  {l}");
+        text += &format!("  {l}\n");
+    }
+    let r = taa::run(out, &mut |s| println!("{s}"))?;
+    for line in taa::describe(&r) {
+        println!("{line}");
+        text += &format!("{line}\n");
+    }
+    println!("  wrote {}", out.join("taa.json").display());
+    if let Some(path) = markdown {
+        let doc = format!(
+            "{}\nMasks under a game's TAA (`noisebake report taa`); `taa.json` beside the run holds every row.\n\n```text\n{text}```\n",
+            Stamp::now().header("Masks under TAA (`noisebake report taa`)")
+        );
+        write(path, &doc)?;
+        println!("  wrote {}", path.display());
+    }
+    Ok(())
 }
 
 fn report(
@@ -680,18 +727,6 @@ fn report(
         return Err(format!(
             "unknown report section `{section}`: use fast, stochastic, cnj, all, bench, vector, sampler, taa or render"
         ));
-    }
-    if section == "taa" {
-        use noisebake_cli::report::taa;
-        for l in taa::READING.lines() {
-            println!("  {l}");
-        }
-        let r = taa::run(out, &mut log)?;
-        for line in taa::describe(&r) {
-            println!("{line}");
-        }
-        println!("  wrote {}", out.join("taa.json").display());
-        return Ok(());
     }
     if section == "sampler" {
         use noisebake_cli::report::sampler;

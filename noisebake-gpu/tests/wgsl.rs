@@ -71,6 +71,7 @@ fn library_passes_naga_validation() {
         "nb_rd2",
         "nb_rd3",
         "nb_rd2_ign_r2",
+        "nb_r2_pairs",
         "nb_rd3_ign_r2",
         "nb_rd4_ign_r2",
         "nb_sobol_owen",
@@ -229,7 +230,7 @@ fn samplers_match_bit_for_bit() {
             })
             .collect();
         let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
-        const OUT: usize = 22;
+        const OUT: usize = 26;
         let kernel = kernel(
             "vec4<i32>",
             "@group(0) @binding(1) var<storage, read_write> outp: array<u32>;",
@@ -252,7 +253,9 @@ fn samplers_match_bit_for_bit() {
              outp[o + 9u] = d.x; outp[o + 10u] = d.y; outp[o + 11u] = d.z; outp[o + 12u] = d.w;
              outp[o + 13u] = e.x; outp[o + 14u] = e.y; outp[o + 15u] = e.z; outp[o + 16u] = e.w;
              outp[o + 17u] = r2.x; outp[o + 18u] = r2.y;
-             outp[o + 19u] = r3.x; outp[o + 20u] = r3.y; outp[o + 21u] = r3.z;"
+             outp[o + 19u] = r3.x; outp[o + 20u] = r3.y; outp[o + 21u] = r3.z;
+             let q = bitcast<vec4<u32>>(nb_r2_pairs(p.xy, f));
+             outp[o + 22u] = q.x; outp[o + 23u] = q.y; outp[o + 24u] = q.z; outp[o + 25u] = q.w;"
             ),
         );
         let out = words(&run(g, &kernel, &bytes_of(&flat), N, N * OUT * 4));
@@ -268,6 +271,7 @@ fn samplers_match_bit_for_bit() {
                 sampler::sobol_owen::<4>(x, y, f, s).to_vec(),
                 sampler::rd::<2>(f, [rot[0], rot[1]]).to_vec(),
                 sampler::rd::<3>(f, rot).to_vec(),
+                sampler::r2_pairs::<4>(x, y, f).to_vec(),
             ]
             .concat();
             for (j, c) in cpu.iter().enumerate() {

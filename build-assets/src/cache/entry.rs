@@ -1,18 +1,21 @@
 //! The entry file format `<key>.nbk`: a 64-byte header (magic `NBAKE\0` and a two-byte format
-//! version, then little-endian u64 data length, FNV-1a 64 of the data, canonical-spec length,
-//! FNV-1a 64 of the canonical spec, the open TAA windows, zero padding), the texel bytes, then
-//! the canonical spec. Format 3 added the open windows (bytes 40–47): how many 3 × 3 windows
-//! of a `taa` mask lack a low or a high value ([`crate::generate::open_windows_of`]), 0 for
-//! every other texture — a promise a bake could not keep, recorded beside the texture.
-//! Reads check every header field with checked arithmetic before using any.
+//! version, then little-endian u64 data length, FNV-1a 64 of the data followed by the open
+//! windows' eight bytes, canonical-spec length, FNV-1a 64 of the canonical spec, the open TAA
+//! windows, zero padding), the texel bytes, then the canonical spec. The open windows (bytes
+//! 40–47, format 3) are how many 3 × 3 windows of a `taa` mask lack a low or a high value, 0
+//! for every other texture — a promise a bake could not keep, recorded beside the texture.
+//! The bake counts them ([`crate::texture::Baked`]); format 4 puts them under the data's hash,
+//! so a read verifies them with the checksums and never decodes or re-counts a texture: the
+//! cache knows entries, not generators. Reads check every header field with checked
+//! arithmetic before using any.
 
 use super::key::fnv64;
 use crate::spec::TextureSpec;
-use crate::texture::Texture;
+use crate::texture::{Baked, Texture};
 use std::time::Duration;
 
 /// Magic and entry-format version (the last two bytes).
-pub(crate) const MAGIC: &[u8; 8] = b"NBAKE\x00\x03\x00";
+pub(crate) const MAGIC: &[u8; 8] = b"NBAKE\x00\x04\x00";
 /// Bytes before the texture data in an entry file.
 pub const HEADER: usize = 64;
 /// The modification time of every entry: 2001-09-09, long before any build that reads it.
@@ -34,14 +37,7 @@ pub enum Corrupt {
     },
     /// Padding bytes 48–63 are not zero.
     Padding,
-    /// The header's count of open TAA windows is not the texture's.
-    OpenWindows {
-        /// In the header.
-        held: u64,
-        /// Counted in the texture.
-        counted: u64,
-    },
-    /// The data or spec hash does not match.
+    /// The data (with the open windows) or spec hash does not match.
     Hash,
     /// The entry holds another spec.
     OtherSpec,
@@ -63,10 +59,6 @@ impl std::fmt::Display for Corrupt {
                 write!(f, "truncated or padded: {file} bytes, header says {header}")
             }
             Corrupt::Padding => f.write_str("header padding is not zero"),
-            Corrupt::OpenWindows { held, counted } => write!(
-                f,
-                "header says {held} open TAA windows, the texture has {counted}"
-            ),
             Corrupt::Hash => f.write_str("content hash mismatch"),
             Corrupt::OtherSpec => f.write_str("entry belongs to a different spec"),
             Corrupt::DataLength { held, needed } => {
@@ -76,16 +68,27 @@ impl std::fmt::Display for Corrupt {
     }
 }
 
-/// The bytes of an entry file.
-pub fn encode(t: &Texture, spec: &TextureSpec) -> Vec<u8> {
+/// FNV-1a 64 of the texel bytes followed by the open windows (little-endian): the header's
+/// data hash.
+fn data_hash(data: &[u8], open_windows: u64) -> u64 {
+    open_windows
+        .to_le_bytes()
+        .iter()
+        .fold(fnv64(data), |h, &b| {
+            (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
+        })
+}
+
+/// The bytes of an entry file holding `baked`.
+pub fn encode(baked: &Baked, spec: &TextureSpec) -> Vec<u8> {
+    let (t, open) = (&baked.texture, baked.open_windows);
     let canon = spec.canonical();
     let mut out = Vec::with_capacity(HEADER + t.data.len() + canon.len());
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&(t.data.len() as u64).to_le_bytes());
-    out.extend_from_slice(&fnv64(&t.data).to_le_bytes());
+    out.extend_from_slice(&data_hash(&t.data, open).to_le_bytes());
     out.extend_from_slice(&(canon.len() as u64).to_le_bytes());
     out.extend_from_slice(&fnv64(canon.as_bytes()).to_le_bytes());
-    let open = crate::generate::open_windows_of(spec, t).unwrap_or(0);
     out.extend_from_slice(&open.to_le_bytes());
     out.resize(HEADER, 0);
     out.extend_from_slice(&t.data);
@@ -93,9 +96,9 @@ pub fn encode(t: &Texture, spec: &TextureSpec) -> Vec<u8> {
     out
 }
 
-/// Verifies an entry's bytes against `spec` and returns its texture. Every header field is
-/// checked, lengths with checked arithmetic, before any is used to slice.
-pub fn decode(bytes: &[u8], spec: &TextureSpec) -> Result<Texture, Corrupt> {
+/// Verifies an entry's bytes against `spec` and returns its texture and open windows. Every
+/// header field is checked, lengths with checked arithmetic, before any is used to slice.
+pub fn decode(bytes: &[u8], spec: &TextureSpec) -> Result<Baked, Corrupt> {
     let (data, canon) = split(bytes)?;
     if canon != spec.canonical().as_bytes() {
         return Err(Corrupt::OtherSpec);
@@ -112,12 +115,10 @@ pub fn decode(bytes: &[u8], spec: &TextureSpec) -> Result<Texture, Corrupt> {
         format: spec.format,
         data: data.to_vec(),
     };
-    let held = open_windows(bytes).unwrap_or(0);
-    let counted = crate::generate::open_windows_of(spec, &t).unwrap_or(0);
-    if held != counted {
-        return Err(Corrupt::OpenWindows { held, counted });
-    }
-    Ok(t)
+    Ok(Baked {
+        texture: t,
+        open_windows: open_windows(bytes).unwrap_or(0),
+    })
 }
 
 /// The open TAA windows an entry's header records (bytes 40–47), `None` for bytes too short to
@@ -128,7 +129,8 @@ pub fn open_windows(bytes: &[u8]) -> Option<u64> {
 }
 
 /// An entry's texel bytes and canonical spec, after checking its magic, format version,
-/// padding, lengths (with checked arithmetic) and both hashes; nothing is sliced before the
+/// padding, lengths (with checked arithmetic) and both hashes (the data's covers the open
+/// windows); nothing is sliced before the
 /// lengths it depends on are checked.
 pub(crate) fn split(bytes: &[u8]) -> Result<(&[u8], &[u8]), Corrupt> {
     if bytes.len() < HEADER || bytes[..6] != MAGIC[..6] {
@@ -142,7 +144,7 @@ pub(crate) fn split(bytes: &[u8]) -> Result<(&[u8], &[u8]), Corrupt> {
         b.copy_from_slice(&bytes[i..i + 8]);
         u64::from_le_bytes(b)
     };
-    let (len, hash, clen, chash) = (u(8), u(16), u(24), u(32));
+    let (len, hash, clen, chash, open) = (u(8), u(16), u(24), u(32), u(40));
     if bytes[48..HEADER].iter().any(|&b| b != 0) {
         return Err(Corrupt::Padding);
     }
@@ -159,7 +161,7 @@ pub(crate) fn split(bytes: &[u8]) -> Result<(&[u8], &[u8]), Corrupt> {
     let data_end = HEADER + len as usize;
     let data = &bytes[HEADER..data_end];
     let canon = &bytes[data_end..];
-    if fnv64(data) != hash || fnv64(canon) != chash {
+    if data_hash(data, open) != hash || fnv64(canon) != chash {
         return Err(Corrupt::Hash);
     }
     Ok((data, canon))

@@ -53,7 +53,7 @@ pub use location::{Locator, target_dir, workspace_root};
 use crate::atomic;
 use crate::error::{Error, Warning};
 use crate::spec::TextureSpec;
-use crate::texture::Texture;
+use crate::texture::{Baked, Texture};
 use std::cell::LazyCell;
 use std::fs::{self, File, OpenOptions};
 use std::io;
@@ -81,6 +81,9 @@ pub struct Entry {
     pub source: Source,
     /// Seconds spent generating (0 for a hit).
     pub seconds: f64,
+    /// The open TAA windows the bake counted ([`Baked::open_windows`]), from the entry's header
+    /// on a hit.
+    pub open_windows: u64,
 }
 
 /// A cache directory and its policy.
@@ -99,7 +102,7 @@ pub struct Cache {
 /// How a read went.
 enum Read {
     Absent,
-    Hit(Texture),
+    Hit(Baked),
     Bad(Warning),
 }
 
@@ -155,20 +158,21 @@ impl Cache {
         for dir in self.dirs().cloned().collect::<Vec<_>>() {
             let path = Self::path_in(&dir, spec);
             match read_entry(&path, spec) {
-                Read::Hit(texture) => {
+                Read::Hit(baked) => {
                     // A hit in the fallback is copied into the cache directory when it can
                     // be written, so a committed cache gains every entry its builds use.
                     let path = if dir != self.dir {
-                        self.promote(&texture, spec).unwrap_or(path)
+                        self.promote(&baked, spec).unwrap_or(path)
                     } else {
                         tidy::record_use(&dir, &key(spec));
                         path
                     };
                     found = Some(Entry {
-                        texture,
+                        texture: baked.texture,
                         path: Some(path),
                         source: Source::Hit,
                         seconds: 0.0,
+                        open_windows: baked.open_windows,
                     });
                     break;
                 }
@@ -182,7 +186,7 @@ impl Cache {
 
     /// Writes a texture found in the fallback into the cache directory (silently nothing when
     /// that cannot be written); the entry's path there on success.
-    fn promote(&self, t: &Texture, spec: &TextureSpec) -> Option<PathBuf> {
+    fn promote(&self, t: &Baked, spec: &TextureSpec) -> Option<PathBuf> {
         let path = self.path(spec);
         fs::create_dir_all(&self.dir).ok()?;
         tidy::ensure_gitignore(&self.dir);
@@ -197,8 +201,9 @@ impl Cache {
     /// The texture of `spec`, from the cache, or made by `make` and stored. `make` runs at
     /// most once, under the entry's lock and after a last look for an entry another process
     /// finished meanwhile, so concurrent builds generate once. The cache never generates by
-    /// itself: the caller passes the generation (usually `|| generate(spec, progress)`).
-    pub fn get_or_insert_with<F: FnOnce() -> Texture>(
+    /// itself: the caller passes the generation (usually `|| bake_texture(spec, progress)`,
+    /// which counts what the entry records; a bare [`Texture`] records nothing more).
+    pub fn get_or_insert_with<B: Into<Baked>, F: FnOnce() -> B>(
         &mut self,
         spec: &TextureSpec,
         make: F,
@@ -214,7 +219,7 @@ impl Cache {
             });
         }
         let mut tried = Vec::new();
-        let texture = LazyCell::new(make);
+        let texture = LazyCell::new(move || make().into());
         for dir in self.dirs().cloned().collect::<Vec<_>>() {
             match self.store_in(&dir, spec, &texture) {
                 Ok(entry) => {
@@ -232,7 +237,7 @@ impl Cache {
         }
         // No directory took it: still a texture, only uncached.
         let start = std::time::Instant::now();
-        let texture = LazyCell::force(&texture).clone();
+        let baked = LazyCell::force(&texture).clone();
         let seconds = start.elapsed().as_secs_f64();
         self.warnings.push(Warning::NotCached {
             name: spec.name.clone(),
@@ -243,20 +248,21 @@ impl Cache {
                 .join("; "),
         });
         Ok(Entry {
-            texture,
+            texture: baked.texture,
             path: None,
             source: Source::Generated,
             seconds,
+            open_windows: baked.open_windows,
         })
     }
 
     /// Makes the texture (unless `texture` already has) and stores the entry in `dir` under its
     /// lock. I/O errors leave nothing behind.
-    fn store_in<F: FnOnce() -> Texture>(
+    fn store_in<F: FnOnce() -> Baked>(
         &mut self,
         dir: &Path,
         spec: &TextureSpec,
-        texture: &LazyCell<Texture, F>,
+        texture: &LazyCell<Baked, F>,
     ) -> io::Result<Entry> {
         fs::create_dir_all(dir)?;
         tidy::ensure_gitignore(dir);
@@ -269,13 +275,14 @@ impl Cache {
         lock.lock()?;
         let path = Self::path_in(dir, spec);
         // Another process may have finished the entry while we waited.
-        if let Read::Hit(t) = read_entry(&path, spec) {
+        if let Read::Hit(b) = read_entry(&path, spec) {
             tidy::record_use(dir, &key);
             return Ok(Entry {
-                texture: t,
+                texture: b.texture,
                 path: Some(path),
                 source: Source::Hit,
                 seconds: 0.0,
+                open_windows: b.open_windows,
             });
         }
         atomic::remove_orphans(dir, &format!("{key}.nbk"));
@@ -289,10 +296,11 @@ impl Cache {
         drop(lock);
         tidy::record_use(dir, &key);
         Ok(Entry {
-            texture: t.clone(),
+            texture: t.texture.clone(),
             path: Some(path),
             source: Source::Generated,
             seconds,
+            open_windows: t.open_windows,
         })
     }
 }

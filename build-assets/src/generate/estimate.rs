@@ -47,12 +47,16 @@ const FAST_ROUNDS_DIRECTIONS: f64 = 10.0;
 /// offsets reach across the texture, out of the caches (fitted to `report taa`'s moving masks).
 const FAST_MOVING: f64 = 2.5;
 
-/// Seconds per multiply-add of the sampler optimiser's scoring and updates.
-const SAMPLER_C: f64 = 4.5e-10;
-/// Seconds per (block, integrand, sample) of the sampler's pool table.
-const SAMPLER_POOL_C: f64 = 2.0e-9;
-/// Sweeps a sampler bake typically runs.
-const SAMPLER_SWEEPS: f64 = 15.0;
+/// Seconds per (pixel, training integrand) of a sampler bake's sweeps, all of them (the number
+/// a bake typically runs before `Schedule::stop_gain` ends it folded in), fixed part.
+const SAMPLER_SWEEPS_A: f64 = 1.8e-7;
+/// The same, per pixel of the filter's support.
+const SAMPLER_SWEEPS_B: f64 = 3.5e-10;
+/// Seconds per (pixel, training integrand, sample) of the errors' table, for one frame.
+const SAMPLER_TABLE_C: f64 = 1.2e-8;
+/// Each frame of history beyond the first costs this share of the first (the EMA's weights
+/// fold the older frames into running sums).
+const SAMPLER_HISTORY: f64 = 1.0 / 3.0;
 
 /// Generations expected to take longer than this get an up-front message.
 pub const ANNOUNCE_SECONDS: f64 = 10.0;
@@ -118,7 +122,9 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
             // Per pair: every pixel's errors on the training integrands (each weighing the
             // spp samples of one frame, or of `frames` frames under an EMA), then sweeps in
             // which every pixel scores `candidates` swaps (a pass over its errors) and a share
-            // of them update the filter's support; pairs run on their own threads.
+            // of them update the filter's support; pairs run on their own threads. Fitted to
+            // the 14 tiles of `report render` (1–16 spp, Gaussian and à-trous, with and
+            // without an EMA), which print each bake beside this estimate.
             let s = crate::generate::sampler::Schedule::DEFAULT;
             let pixels = (spec.dims[0] * spec.dims[1]) as f64;
             let len = s.integrands(p) as f64;
@@ -129,13 +135,14 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
             let pairs = p.sample_dims.div_ceil(2) as f64;
             let width = |n: usize| crate::generate::sampler::support_width(p.spatial, n) as f64;
             let support = width(spec.dims[0]) * width(spec.dims[1]);
-            let table = pixels * len * p.spp as f64 * history * SAMPLER_POOL_C;
-            let per_sweep = pixels * len * (s.candidates as f64 + 0.2 * support) * SAMPLER_C;
+            let frames = 1.0 + (history - 1.0) * SAMPLER_HISTORY;
+            let table = pixels * len * p.spp as f64 * frames * SAMPLER_TABLE_C;
+            let sweeps = pixels * len * (SAMPLER_SWEEPS_A + SAMPLER_SWEEPS_B * support);
             let waves = (pairs / threads.max(1) as f64).ceil();
             Estimate {
                 texels: n,
                 footprint: support as u64,
-                seconds: waves * (table + SAMPLER_SWEEPS * per_sweep),
+                seconds: waves * (table + sweeps),
             }
         }
         Kind::White => Estimate {
@@ -211,5 +218,39 @@ mod tests {
         assert!((t(&big, 1) / t(&big, 2) - 2.0).abs() < 1e-9);
         assert_eq!(t(&small, 1), t(&small, 2));
         assert_eq!(t(&stbn, 1), t(&stbn, 2));
+    }
+
+    /// A sampler tile's estimate follows what its bake does: a wider filter support costs
+    /// more per sweep, and under an EMA every sample of the history adds to the errors'
+    /// table, so the EMA tile's estimate grows with spp where a one-frame tile's barely does.
+    #[test]
+    fn sampler_estimates_follow_filter_spp_and_history() {
+        let tile = |spp: u32, filter: &str, ema: bool| {
+            let t = if ema {
+                "\ntemporal_filter = { kind = \"ema\", alpha = 0.1 }"
+            } else {
+                ""
+            };
+            estimate_with_threads(
+                &spec(&format!(
+                    "kind = \"sampler\"\ndims = [128, 128]\nspp = {spp}\nsample_dims = 4\nspatial_filter = {filter}{t}"
+                )),
+                2,
+            )
+            .seconds
+        };
+        let gauss = "{ kind = \"gauss\", sigma = 1 }";
+        let atrous = "{ kind = \"atrous\", passes = 3 }";
+        for ema in [false, true] {
+            for spp in [1, 4, 16] {
+                assert!(
+                    tile(spp, atrous, ema) > tile(spp, gauss, ema),
+                    "{spp} {ema}"
+                );
+            }
+        }
+        let growth = |ema| tile(16, gauss, ema) / tile(1, gauss, ema);
+        assert!(growth(true) > 3.0 && growth(false) < 3.0);
+        assert!(tile(16, gauss, true) > tile(16, gauss, false));
     }
 }

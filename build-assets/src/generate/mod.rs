@@ -75,6 +75,17 @@ pub fn open_windows_of(spec: &TextureSpec, t: &Texture) -> Option<u64> {
         .then(|| fast::open_windows(&values, dims, coverage))
 }
 
+/// Generates a texture and counts what its cache entry records ([`open_windows_of`]): what a
+/// bake hands [`crate::cache::Cache::get_or_insert_with`].
+pub fn bake_texture(spec: &TextureSpec, progress: Progress) -> crate::texture::Baked {
+    let texture = generate(spec, progress);
+    let open_windows = open_windows_of(spec, &texture).unwrap_or(0);
+    crate::texture::Baked {
+        texture,
+        open_windows,
+    }
+}
+
 /// Generates a texture. Pure: the same spec gives the same bytes on any machine and thread count.
 pub fn generate(spec: &TextureSpec, progress: Progress) -> Texture {
     let dims = &spec.dims;

@@ -2,7 +2,7 @@
 //! cosine-weighted rays per pixel and frame, each ray's direction from a sampler — the baked
 //! sampler tile (`AO_RAYS`, trained on cosine-weighted directions for the demo's blur, read
 //! through its own warp `SamplerTile::cosine_hemisphere`), Ahmed & Wonka 2020's hierarchical ordering (ZSobol, Blender Cycles' default,
-//! no table), the free `rd_ign_r2` and `sobol_owen`, and white noise. Measured after the blur on
+//! no table), the free `r2_pairs` (the per-pair R2 lattice; for one pair the same points as `rd_ign_r2`) and `sobol_owen`, and white noise. Measured after the blur on
 //! the first frame (what a real-time renderer's denoiser sees) and after the EMA.
 
 use crate::apps::{App, Occlusion};
@@ -53,8 +53,8 @@ pub fn run(cfg: &Config) -> Vec<Row> {
             let z = ZSobol::new(w.max(h), SPP, 7 + u64::from(f));
             warp::cosine_hemisphere(z.sample(x, y, i, 0), z.sample(x, y, i, 1))
         }),
-        ("rd_ign_r2", true, 0, &|x, y, f, i| {
-            let [u, v] = sampler::rd_ign_r2::<2>(x, y, f * SPP + i);
+        ("r2_pairs", true, 0, &|x, y, f, i| {
+            let [u, v] = sampler::r2_pairs::<2>(x, y, f * SPP + i);
             warp::cosine_hemisphere(u, v)
         }),
         ("sobol_owen", true, 0, &|x, y, f, i| {

@@ -16,14 +16,56 @@
 //! run on such estimates, [`scene`] the scenes and [`trace`] the BVH. Everything is
 //! deterministic: rows are shaded in parallel, each pixel by one thread in a fixed order.
 
+pub mod anchor;
 pub mod denoise;
+pub mod motion;
 pub mod scene;
 pub mod trace;
 
 use glam::Vec3;
 use rayon::prelude::*;
-use scene::Scene;
+use scene::{Camera, Scene};
 use trace::Tracer;
+
+/// A camera and its image plane's shift in pixels (a lens shift: the picture moves without
+/// the eye moving).
+#[derive(Clone, Copy, Debug)]
+pub struct View {
+    /// The camera.
+    pub camera: Camera,
+    /// The shift, `(x, y)` pixels: pixel `p` sees what pixel `p + shift` of the unshifted
+    /// camera sees.
+    pub shift: [f32; 2],
+}
+
+impl View {
+    /// The unit direction of the ray through the centre of pixel `(x, y)` of a `w × h` image.
+    pub fn ray(&self, x: f32, y: f32, w: usize, h: usize) -> Vec3 {
+        self.camera.ray(x + self.shift[0], y + self.shift[1], w, h)
+    }
+
+    /// Where the point `p` appears in a `w × h` image: its continuous pixel position (pixel
+    /// centres at integers), or `None` behind the eye. The inverse of [`View::ray`].
+    pub fn project(&self, p: Vec3, w: usize, h: usize) -> Option<[f32; 2]> {
+        let c = &self.camera;
+        let forward = (c.target - c.eye).normalize();
+        let right = forward.cross(Vec3::Y).normalize();
+        let up = right.cross(forward);
+        let d = p - c.eye;
+        let z = d.dot(forward);
+        if z <= 1e-6 {
+            return None;
+        }
+        let half = (c.fov_y * 0.5).tan();
+        let aspect = w as f32 / h as f32;
+        let u = d.dot(right) / z / (half * aspect);
+        let v = d.dot(up) / z / half;
+        Some([
+            (u + 1.0) * 0.5 * w as f32 - 0.5 - self.shift[0],
+            (1.0 - v) * 0.5 * h as f32 - 0.5 - self.shift[1],
+        ])
+    }
+}
 
 /// What a pixel's primary ray found.
 #[derive(Clone, Debug)]
@@ -56,64 +98,35 @@ impl GBuffer {
         height: usize,
         shift: [i32; 2],
     ) -> GBuffer {
-        Self::window(scene, tracer, [width, height], width, shift)
+        let view = View {
+            camera: scene.camera,
+            shift: [shift[0] as f32, shift[1] as f32],
+        };
+        Self::window(scene, tracer, &view, [width, height])
     }
 
-    /// The G-buffer of a `view[0] × view[1]` camera widened to `columns ≥ view[0]` columns
-    /// to the right: the image plane a horizontal pan of up to `columns − view[0]` pixels
-    /// sweeps, each pan's picture one [`crop`](Self::crop) of it.
-    pub fn panned(scene: &Scene, tracer: &Tracer, view: [usize; 2], columns: usize) -> GBuffer {
-        Self::window(scene, tracer, view, columns.max(view[0]), [0, 0])
+    /// The G-buffer of `view` at `size`.
+    pub fn of_view(scene: &Scene, tracer: &Tracer, view: &View, size: [usize; 2]) -> GBuffer {
+        Self::window(scene, tracer, view, size)
     }
 
-    /// Columns `x0 … x0 + width − 1` (all rows): what the camera panned by `x0` pixels sees.
-    pub fn crop(&self, x0: usize, width: usize) -> GBuffer {
-        let cut = |v: &[f32]| crop(v, self.width, x0, width);
-        let rows = |i: usize| (i / width) * self.width + x0 + i % width;
-        GBuffer {
-            width,
-            height: self.height,
-            hit: (0..width * self.height)
-                .map(|i| self.hit[rows(i)])
-                .collect(),
-            position: (0..width * self.height)
-                .map(|i| self.position[rows(i)])
-                .collect(),
-            normal: (0..width * self.height)
-                .map(|i| self.normal[rows(i)])
-                .collect(),
-            depth: cut(&self.depth),
-        }
-    }
-
-    fn window(
-        scene: &Scene,
-        tracer: &Tracer,
-        view: [usize; 2],
-        columns: usize,
-        shift: [i32; 2],
-    ) -> GBuffer {
-        let [width, height] = view;
+    fn window(scene: &Scene, tracer: &Tracer, view: &View, size: [usize; 2]) -> GBuffer {
+        let [width, height] = size;
         let eps = OFFSET * scene.ao_radius;
-        let cam = scene.camera;
+        let eye = view.camera.eye;
         let rows: Vec<Vec<(bool, Vec3, Vec3, f32)>> = (0..height)
             .into_par_iter()
             .map(|y| {
-                (0..columns)
+                (0..width)
                     .map(|x| {
-                        let dir = cam.ray(
-                            x as f32 + shift[0] as f32,
-                            y as f32 + shift[1] as f32,
-                            width,
-                            height,
-                        );
-                        match tracer.closest(cam.eye, dir, f32::MAX) {
+                        let dir = view.ray(x as f32, y as f32, width, height);
+                        match tracer.closest(eye, dir, f32::MAX) {
                             Some(h) => {
                                 let mut n = tracer.normal(h.triangle);
                                 if n.dot(dir) > 0.0 {
                                     n = -n;
                                 }
-                                let p = cam.eye + dir * h.t + n * eps;
+                                let p = eye + dir * h.t + n * eps;
                                 (true, p, n, h.t)
                             }
                             None => (false, Vec3::ZERO, Vec3::ZERO, f32::INFINITY),
@@ -124,7 +137,7 @@ impl GBuffer {
             .collect();
         let flat: Vec<(bool, Vec3, Vec3, f32)> = rows.into_iter().flatten().collect();
         GBuffer {
-            width: columns,
+            width,
             height,
             hit: flat.iter().map(|p| p.0).collect(),
             position: flat.iter().map(|p| p.1).collect(),
@@ -137,14 +150,6 @@ impl GBuffer {
     pub fn surface_pixels(&self) -> usize {
         self.hit.iter().filter(|&&h| h).count()
     }
-}
-
-/// Columns `x0 … x0 + width − 1` of an image `stride` pixels wide (all rows).
-pub fn crop(v: &[f32], stride: usize, x0: usize, width: usize) -> Vec<f32> {
-    v.chunks_exact(stride)
-        .flat_map(|row| &row[x0..x0 + width])
-        .copied()
-        .collect()
 }
 
 /// The integrands, in the order estimates are returned.

@@ -230,20 +230,131 @@ f 5 8 7 6\nf 9 10 11 12\nf 5 6 10 9\nf 6 7 11 10\nf 7 8 12 11\nf 8 5 9 12\nf 5 5
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// The widened G-buffer's crops are the panned camera's pictures: crop 0 is the static
-/// camera's G-buffer, crop `x0` the one whose image plane is shifted by `x0` pixels.
+/// `View::project` inverts `View::ray`: the point a pixel's ray hits projects back to that
+/// pixel, shifted or not, at any position within the pixel.
 #[test]
-fn a_pan_is_a_crop_of_the_widened_view() {
+fn projection_inverts_the_ray() {
+    let s = Scene::room();
+    for shift in [[0.0, 0.0], [3.25, -1.5]] {
+        let view = super::View {
+            camera: s.camera,
+            shift,
+        };
+        for (x, y) in [(0.0f32, 0.0f32), (17.3, 40.9), (159.0, 119.0)] {
+            let p = s.camera.eye + view.ray(x, y, 160, 120) * 3.7;
+            let q = view.project(p, 160, 120).expect("in front of the eye");
+            assert!(
+                (q[0] - x).abs() < 1e-3 && (q[1] - y).abs() < 1e-3,
+                "{q:?} vs ({x}, {y})"
+            );
+        }
+        let behind = s.camera.eye * 2.0 - s.camera.target;
+        assert!(view.project(behind, 160, 120).is_none());
+    }
+}
+
+/// A pan by whole pixels reprojects exactly: the pixel the picture came from takes the
+/// weight; pixels that come in at the border reset; a blend of the previous frame's
+/// picture through the reprojection is the new frame's picture where history is kept.
+#[test]
+fn a_whole_pixel_pan_reprojects_exactly() {
+    use super::motion::{Motion, Reprojection};
     let s = Scene::room();
     let t = Tracer::new(&s.triangles);
-    let wide = GBuffer::panned(&s, &t, [24, 16], 30);
-    assert_eq!((wide.width, wide.height), (30, 16));
-    for x0 in [0usize, 5] {
-        let a = wide.crop(x0, 24);
-        let b = GBuffer::new(&s, &t, 24, 16, [x0 as i32, 0]);
-        assert_eq!(a.hit, b.hit, "pan {x0}");
-        assert_eq!(a.position, b.position, "pan {x0}");
-        assert_eq!(a.normal, b.normal, "pan {x0}");
-        assert_eq!(a.depth, b.depth, "pan {x0}");
+    let m = Motion::Pan {
+        velocity: [2.0, -1.0],
+        sweep: 4,
+    };
+    let (w, h) = (32usize, 24usize);
+    let v0 = m.view(s.camera, s.ao_radius, 1);
+    let v1 = m.view(s.camera, s.ao_radius, 2);
+    let g0 = GBuffer::of_view(&s, &t, &v0, [w, h]);
+    let g1 = GBuffer::of_view(&s, &t, &v1, [w, h]);
+    let r = Reprojection::new(&g1, &g0, &v0);
+    let mut kept = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            if !g1.hit[i] {
+                continue;
+            }
+            let (px, py) = (x as i64 + 2, y as i64 - 1);
+            let inside = px < w as i64 && py >= 0;
+            if inside && g0.hit[py as usize * w + px as usize] {
+                let j = py as usize * w + px as usize;
+                // The surface point sits a hair off its surface (the G-buffer's offset), so
+                // its projection is within a few thousandths of a pixel of the centre.
+                let (tap, weight) = r.taps[i]
+                    .iter()
+                    .copied()
+                    .max_by(|a, b| a.1.total_cmp(&b.1))
+                    .expect("a kept pixel has taps");
+                assert_eq!(tap as usize, j, "pixel ({x}, {y}): {:?}", r.taps[i]);
+                assert!(weight > 0.99, "pixel ({x}, {y}): {:?}", r.taps[i]);
+                kept += 1;
+            } else if !inside {
+                // Came in at the border: its surface was off-screen, at least a pixel beyond
+                // the last column or row less the projection's hair.
+                let q = r.prev[i];
+                assert!(
+                    r.taps[i].is_empty() || q[0] > (w - 1) as f32 + 0.99 || q[1] < 0.01,
+                    "pixel ({x}, {y}) came in at the border: {q:?}, {:?}",
+                    r.taps[i]
+                );
+            }
+        }
     }
+    assert!(kept > w * h / 2, "{kept} pixels kept their history");
+    let depth0: Vec<f32> = g0.depth.iter().map(|d| d.min(100.0)).collect();
+    let depth1: Vec<f32> = g1.depth.iter().map(|d| d.min(100.0)).collect();
+    let blended = r.blend(&depth0, &depth1, 0.25);
+    let x_inside = |i: usize| i % w + 2 < w && i / w >= 1;
+    for i in 0..w * h {
+        if r.taps[i].is_empty() {
+            assert_eq!(blended[i], depth1[i]);
+        } else if r.taps[i].iter().any(|t| t.1 > 0.999) && x_inside(i) {
+            // One tap holds the weight (elsewhere a hair of a neighbour on the same plane,
+            // at another depth, may share it).
+            assert!(
+                (blended[i] - depth1[i]).abs() < 1e-2 * depth1[i],
+                "pixel {i}: {} vs {}, {:?}",
+                blended[i],
+                depth1[i],
+                r.taps[i]
+            );
+        }
+    }
+    assert!(r.reset_share(&g1.hit) > 0.0);
+    assert!((r.mean_motion(&g1.hit, w) - 5f64.sqrt()).abs() < 1e-3);
+}
+
+/// The camera paths sweep out and back: the pan's shift and the parallax camera return to
+/// the still camera after two sweeps, and the triangle wave steps by one.
+#[test]
+fn motions_sweep_out_and_back() {
+    use super::motion::{Motion, triangle};
+    for f in 1..100 {
+        assert_eq!((triangle(f, 7) - triangle(f - 1, 7)).abs(), 1.0);
+    }
+    assert_eq!(
+        (triangle(0, 7), triangle(7, 7), triangle(14, 7)),
+        (0.0, 7.0, 0.0)
+    );
+    let s = Scene::room();
+    let pan = Motion::Pan {
+        velocity: [1.5, 0.5],
+        sweep: 10,
+    };
+    assert_eq!(pan.view(s.camera, 1.0, 10).shift, [15.0, 5.0]);
+    assert_eq!(pan.view(s.camera, 1.0, 20).shift, [0.0, 0.0]);
+    let par = Motion::Parallax {
+        truck: 0.1,
+        dolly: 0.1,
+        sweep: 4,
+    };
+    let moved = par.view(s.camera, 1.0, 3).camera;
+    assert!((moved.eye - s.camera.eye).length() > 0.1);
+    // Truck period 8, dolly period 12: both are home at frame 24.
+    let home = par.view(s.camera, 1.0, 24).camera;
+    assert!((home.eye - s.camera.eye).length() < 1e-5);
 }

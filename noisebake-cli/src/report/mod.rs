@@ -9,6 +9,7 @@ pub mod kit;
 #[cfg(feature = "render")]
 pub mod render;
 pub mod sampler;
+pub mod stamp;
 pub mod stochastic;
 pub mod taa;
 pub mod vector;

@@ -14,12 +14,13 @@
 //!
 //! Denoisers: none, Gaussian σ 1, box 5 × 5, the SVGF-style à-trous of 3 passes
 //! ([`crate::render::denoise`]). The samplers: the crate's baked tiles (kind `sampler`, one per
-//! filter they are baked for), its free samplers (`rd_ign_r2`, `ign_r2`, `sobol_owen`), Ahmed
+//! filter they are baked for), its free samplers (`r2_pairs`, the per-pair R2 lattice that is the bar; `rd_ign_r2`, `ign_r2`, `sobol_owen`), Ahmed
 //! and Wonka's ZSobol, white noise, and with `--features peers` Heitz et al. 2019's tables
 //! (the one for that spp, and the 256-spp table read progressively, sample `f·spp + i`, as
 //! NVIDIA's NRD sample reads it by frame) and OpenQMC's lattice blue-noise sampler.
 
 use crate::render::denoise::{Denoiser, Filter};
+use crate::render::motion::{Motion, Reprojection};
 use crate::render::scene::Scene;
 use crate::render::trace::Tracer;
 use crate::render::{GBuffer, INTEGRANDS, Sampler, render_frame};
@@ -31,8 +32,10 @@ use std::time::Instant;
 
 /// Image width and height: 160 × 120 over a 128 × 128 tile, so the tile's wrap is in view.
 pub const SIZE: [usize; 2] = [160, 120];
-/// Samples per pixel measured on one frame.
-pub const SPPS: [u32; 5] = [1, 2, 4, 8, 16];
+/// Samples per pixel measured on one frame (with `--full`, [`FULL_SPPS`]).
+pub const SPPS: [u32; 3] = [1, 4, 16];
+/// Samples per pixel a `--full` run measures on one frame.
+pub const FULL_SPPS: [u32; 5] = [1, 2, 4, 8, 16];
 /// Samples per pixel per frame measured under the EMA (their one-frame figures come from the
 /// same frames).
 pub const EMA_SPPS: [u32; 2] = [4, 16];
@@ -44,38 +47,69 @@ pub const MEASURED: std::ops::Range<u32> = 32..64;
 pub const ONE_FRAME_FRAMES: u32 = 8;
 /// The EMA's blend weight.
 pub const ALPHA: f32 = 0.1;
-/// Samples per pixel per frame measured with the camera moving (for information).
+/// Samples per pixel per frame measured with the camera moving (with `--full`,
+/// [`FULL_MOVING_SPPS`]).
 pub const MOVING_SPPS: [u32; 1] = [4];
-/// The moving camera pans right and back by this many pixels ...
-pub const PAN: usize = 16;
-/// ... this many pixels a frame (a triangle wave: [`pan`]).
-pub const PAN_SPEED: usize = 2;
+/// Samples per pixel per frame a `--full` run measures with the camera moving.
+pub const FULL_MOVING_SPPS: [u32; 3] = [1, 4, 16];
+/// Samplers only a `--full` run measures (superseded by `r2_pairs`, or not a goal's peer).
+pub const FULL_ONLY: [&str; 2] = ["ign_r2 (free)", "OpenQMC lattice bn"];
 
-/// How far the moving camera has panned at `frame`: [`PAN_SPEED`] pixels a frame, right to
-/// [`PAN`] and back.
-pub fn pan(frame: u32) -> usize {
-    let p = (PAN_SPEED * frame as usize) % (2 * PAN);
-    if p > PAN { 2 * PAN - p } else { p }
+/// What a run measures. The default fits the report's time on 2 cores; `full` adds 2 and 8
+/// spp, the moving cameras at 1 and 16 spp, the samplers of [`FULL_ONLY`], and the per-pixel
+/// anchor experiment ([`crate::render::anchor`]) on the moving cameras.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    /// Everything.
+    pub full: bool,
 }
 
-/// The EMA of errors through a camera pan: pixel `x` of the new frame saw, a frame ago, what
-/// pixel `x + delta` saw (the picture moved by `−delta`); the history is read from there and
-/// blended with `err` by `alpha`, and where that pixel was out of view (disoccluded) the
-/// history restarts from `err`, as a TAA resets history it cannot reproject.
-pub fn reproject(history: &[f32], err: &[f32], width: usize, delta: isize, alpha: f32) -> Vec<f32> {
-    err.iter()
-        .enumerate()
-        .map(|(i, &e)| {
-            let x = (i % width) as isize + delta;
-            if (0..width as isize).contains(&x) {
-                let h = history[i - (i % width) + x as usize];
-                h + alpha * (e - h)
-            } else {
-                e
-            }
-        })
-        .collect()
+impl Options {
+    /// Samples per pixel measured on one frame.
+    pub fn spps(&self) -> &'static [u32] {
+        if self.full { &FULL_SPPS } else { &SPPS }
+    }
+
+    /// Samples per pixel measured with the camera moving.
+    pub fn moving_spps(&self) -> &'static [u32] {
+        if self.full {
+            &FULL_MOVING_SPPS
+        } else {
+            &MOVING_SPPS
+        }
+    }
 }
+/// The moving cameras: a sub-pixel pan in a diagonal direction, and a truck with a dolly
+/// (parallax, magnification, disocclusion).
+pub const MOTIONS: [Motion; 2] = [
+    Motion::Pan {
+        velocity: [1.6, 0.7],
+        sweep: 20,
+    },
+    Motion::Parallax {
+        truck: 0.03,
+        dolly: 0.04,
+        sweep: 16,
+    },
+];
+/// A moving camera's reference: samples per pixel of each frame's, in two replicates whose
+/// difference measures its own error ([`Moving`]).
+pub const MOVING_REFERENCE_SPP: u32 = 64;
+/// The samplers measured with the camera moving: the EMA tiles, the peers and white noise;
+/// with `--full`, those flagged are also read through a per-pixel
+/// [`crate::render::anchor::Anchor`] (`… + anchor`).
+pub const MOVING: [(&str, bool); 9] = [
+    ("tile (gauss σ1, ema)", true),
+    ("tile (à-trous 3, ema)", true),
+    ("r2_pairs (free)", true),
+    ("rd_ign_r2 (free)", false),
+    ("Heitz 2019 (table for this spp)", false),
+    ("Heitz 2019 (256-spp table, progressive)", true),
+    ("ZSobol (Ahmed-Wonka 2020)", false),
+    ("sobol_owen (free)", false),
+    ("white", false),
+];
+
 /// The reference's samples per pixel, and its replicates.
 pub const REFERENCE_SPP: u32 = 8192;
 /// Independent replicates the reference is the mean of.
@@ -97,8 +131,8 @@ pub struct Row {
     pub family: String,
     /// Samples per pixel per frame.
     pub spp: u32,
-    /// `frame` (one frame, averaged over frames), `ema` (accumulated) or `moving` (accumulated
-    /// with the camera panning and the history reprojected).
+    /// `frame` (one frame, averaged over frames), `ema` (accumulated), or a motion's name
+    /// (`pan`, `parallax`: accumulated with the camera moving and the history reprojected).
     pub mode: String,
     /// `ao`, `shadow` or `bounce`.
     pub integrand: String,
@@ -142,9 +176,10 @@ pub struct Cell {
     pub margin_percent: f64,
 }
 
-/// The peers a tile must beat: the free `rd_ign_r2`, Heitz et al. 2019's tables, ZSobol and
-/// per-pixel Owen-scrambled Sobol.
-pub const PEERS: [&str; 5] = [
+/// The peers a tile must beat: the free per-pair R2 lattice (`r2_pairs`) and `rd_ign_r2`,
+/// Heitz et al. 2019's tables, ZSobol and per-pixel Owen-scrambled Sobol.
+pub const PEERS: [&str; 6] = [
+    "r2_pairs (free)",
     "rd_ign_r2 (free)",
     "Heitz 2019 (table for this spp)",
     "Heitz 2019 (256-spp table, progressive)",
@@ -189,6 +224,80 @@ pub fn cells(rows: &[Row]) -> Vec<Cell> {
                         mode: mode.into(),
                         tile,
                         tile_rmse: t.rmse[k],
+                        best: best.sampler.clone(),
+                        best_rmse: best.rmse[k],
+                        margin_percent: 100.0 * (1.0 - t.rmse[k] / best.rmse[k]),
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// One cell of the moving-camera goal: the EMA tile baked for the cell, with the camera
+/// moving, against its own still-camera EMA error and the best peer under the same motion.
+#[derive(Clone, Debug, Serialize)]
+pub struct MovingCell {
+    /// Samples per pixel per frame.
+    pub spp: u32,
+    /// `ao` or `shadow`.
+    pub integrand: String,
+    /// `gauss σ1` or `à-trous 3`.
+    pub denoiser: String,
+    /// `pan` or `parallax`.
+    pub motion: String,
+    /// The tile baked for this cell (its EMA tile).
+    pub tile: String,
+    /// Its error with the camera moving.
+    pub tile_rmse: f64,
+    /// Its error with the camera still (the `ema` row).
+    pub still_rmse: f64,
+    /// How much more error the motion leaves, in percent of the still error.
+    pub rise_percent: f64,
+    /// The best peer under the motion.
+    pub best: String,
+    /// Its error.
+    pub best_rmse: f64,
+    /// How much less error the tile leaves than the best peer, in percent (negative: more).
+    pub margin_percent: f64,
+}
+
+/// The moving-camera goal's cells, at every spp measured both still under the EMA and moving.
+pub fn moving_cells(rows: &[Row]) -> Vec<MovingCell> {
+    let mut out = Vec::new();
+    for spp in EMA_SPPS {
+        for motion in MOTIONS.map(|m| m.name()) {
+            for integrand in ["ao", "shadow"] {
+                for (k, denoiser) in [(1, "gauss σ1"), (3, "à-trous 3")] {
+                    let find = |name: &str, mode: &str| {
+                        rows.iter().find(|r| {
+                            r.sampler == name
+                                && r.spp == spp
+                                && r.integrand == integrand
+                                && r.mode == mode
+                        })
+                    };
+                    let tile = format!("tile ({denoiser}, ema)");
+                    let (Some(t), Some(still)) = (find(&tile, motion), find(&tile, "ema")) else {
+                        continue;
+                    };
+                    let Some(best) = PEERS
+                        .iter()
+                        .filter_map(|p| find(p, motion))
+                        .min_by(|a, b| a.rmse[k].total_cmp(&b.rmse[k]))
+                    else {
+                        continue;
+                    };
+                    out.push(MovingCell {
+                        spp,
+                        integrand: integrand.into(),
+                        denoiser: denoiser.into(),
+                        motion: motion.into(),
+                        tile,
+                        tile_rmse: t.rmse[k],
+                        still_rmse: still.rmse[k],
+                        rise_percent: 100.0 * (t.rmse[k] / still.rmse[k] - 1.0),
                         best: best.sampler.clone(),
                         best_rmse: best.rmse[k],
                         margin_percent: 100.0 * (1.0 - t.rmse[k] / best.rmse[k]),
@@ -248,6 +357,26 @@ pub struct Report {
     pub rows: Vec<Row>,
     /// The tiles' goal, cell by cell ([`cells`]; empty without the peers).
     pub cells: Vec<Cell>,
+    /// The moving cameras: per motion, its name, mean motion of the pixels that keep their
+    /// history (pixels a frame) and the share of surface pixels reset a frame.
+    pub motions: Vec<MotionSummary>,
+    /// The moving-camera goal, cell by cell ([`moving_cells`]).
+    pub moving_cells: Vec<MovingCell>,
+    /// Every tile's bake, measured beside its estimate.
+    pub bakes: Vec<BakeTime>,
+    /// Whether this was a `--full` run.
+    pub full: bool,
+}
+
+/// A moving camera as measured.
+#[derive(Clone, Debug, Serialize)]
+pub struct MotionSummary {
+    /// `pan` or `parallax`.
+    pub motion: String,
+    /// The mean motion of the pixels that keep their history, pixels a frame.
+    pub mean_motion: f64,
+    /// The share of surface pixels whose history resets, per frame.
+    pub reset_share: f64,
 }
 
 /// A sampler entry: how it reads, and what it costs a game.
@@ -258,6 +387,23 @@ pub struct Entry {
     pub family: &'static str,
     /// The lookup.
     pub f: Box<dyn Fn(i32, i32, u32, u32) -> [f32; 4] + Sync>,
+    /// For a baked tile, what its bake took and what was announced for it.
+    pub bake: Option<BakeTime>,
+}
+
+/// A tile's bake: measured and estimated seconds on this machine's threads.
+#[derive(Clone, Debug, Serialize)]
+pub struct BakeTime {
+    /// The tile.
+    pub tile: String,
+    /// Its samples per pixel.
+    pub spp: u32,
+    /// Seconds it took (0 when read from the cache).
+    pub seconds: f64,
+    /// Whether it was read from the cache.
+    pub cached: bool,
+    /// What `build_assets::generate::estimate` announces for it, seconds.
+    pub estimate: f64,
 }
 
 /// A 128 × 128 tile's lookup through the runtime's view for `spp` samples per frame, its
@@ -298,8 +444,11 @@ fn tile(spp: u32, name: &str, keys: &str, log: &mut dyn FnMut(&str)) -> Result<E
         .textures
         .remove(0);
     let (t, secs, cached) = super::kit::bake_texture(&s, log)?;
+    let estimate = build_assets::generate::estimate::estimate(&s).seconds;
     if !cached {
-        log(&format!("  baked `{name}` at {spp} spp in {secs:.1} s"));
+        log(&format!(
+            "  baked `{name}` at {spp} spp in {secs:.1} s (estimated {estimate:.1} s)"
+        ));
     }
     let keys = t
         .data
@@ -314,6 +463,13 @@ fn tile(spp: u32, name: &str, keys: &str, log: &mut dyn FnMut(&str)) -> Result<E
         name: name.to_string(),
         family: "baked",
         f: tile_sampler(keys, spp, sobol_pairs),
+        bake: Some(BakeTime {
+            tile: name.to_string(),
+            spp,
+            seconds: if cached { 0.0 } else { secs },
+            cached,
+            estimate,
+        }),
     })
 }
 
@@ -357,19 +513,28 @@ pub fn samplers(spp: u32, frames: u32, log: &mut dyn FnMut(&str)) -> Result<Vec<
     #[cfg(feature = "peers")]
     out.push(peers::openqmc());
     out.push(Entry {
+        name: "r2_pairs (free)".into(),
+        family: "free",
+        f: Box::new(move |x, y, f, i| sampler::r2_pairs::<4>(x, y, f * spp + i)),
+        bake: None,
+    });
+    out.push(Entry {
         name: "rd_ign_r2 (free)".into(),
         family: "free",
         f: Box::new(move |x, y, f, i| sampler::rd_ign_r2::<4>(x, y, f * spp + i)),
+        bake: None,
     });
     out.push(Entry {
         name: "ign_r2 (free)".into(),
         family: "free",
         f: Box::new(move |x, y, f, i| sampler::ign_r2::<4>(x, y, f * spp + i)),
+        bake: None,
     });
     out.push(Entry {
         name: "sobol_owen (free)".into(),
         family: "free",
         f: Box::new(move |x, y, f, i| sampler::sobol_owen::<4>(x, y, f * spp + i, 1)),
+        bake: None,
     });
     let z = crate::zsobol::ZSobol::new(SIZE[0].max(SIZE[1]), spp * frames, 7);
     out.push(Entry {
@@ -384,6 +549,7 @@ pub fn samplers(spp: u32, frames: u32, log: &mut dyn FnMut(&str)) -> Result<Vec<
                 z.sample(x, y, k, 3),
             ]
         }),
+        bake: None,
     });
     out.push(Entry {
         name: "white".into(),
@@ -394,6 +560,7 @@ pub fn samplers(spp: u32, frames: u32, log: &mut dyn FnMut(&str)) -> Result<Vec<
                 noise_runtime::sequence::to_unit(noise_runtime::hash::hash3(x, y, k + d as i32, 99))
             })
         }),
+        bake: None,
     });
     Ok(out)
 }
@@ -458,6 +625,7 @@ mod peers {
                 name: "Heitz 2019 (table for this spp)".into(),
                 family: "published",
                 f: table(s, sc, r, spp),
+                bake: None,
             });
         }
         out.push(Entry {
@@ -469,6 +637,7 @@ mod peers {
                 b::spp256::RANKING_TILE,
                 spp,
             ),
+            bake: None,
         });
         out
     }
@@ -482,6 +651,7 @@ mod peers {
             f: Box::new(|x, y, f, i| {
                 openqmc::LatticeBnSampler::new(x, y, f as i32, i as i32).draw_sample_f32::<4>()
             }),
+            bake: None,
         }
     }
 }
@@ -640,55 +810,122 @@ pub fn measure(
     out
 }
 
-/// What a moving camera sees: per pan, the view's G-buffer, its reference and its filters.
-pub struct Panned {
-    views: Vec<(GBuffer, [Vec<f32>; 3], Vec<Filter>)>,
+/// A moving camera, traced: every frame's G-buffer, reprojection and filters, its reference,
+/// and the floor its reference's own error adds.
+pub struct Moving {
+    /// The motion.
+    pub motion: Motion,
+    frames: Vec<(GBuffer, Option<Reprojection>, Vec<Filter>)>,
+    reference: Vec<[Vec<f32>; 3]>,
+    /// Per integrand and denoiser, the mean square of the reference's own error through the
+    /// same EMA over [`MEASURED`] (subtracted from every sampler's).
+    pub floor: [[f64; 4]; 3],
+    /// The share of surface pixels whose history resets, per frame on average.
+    pub reset_share: f64,
+    /// The mean motion of the pixels that keep their history, pixels a frame.
+    pub mean_motion: f64,
 }
 
-impl Panned {
-    /// The views of every pan `0 … PAN` cut from the widened G-buffer and reference.
-    pub fn new(wide: &GBuffer, reference: &[Vec<f32>; 3], width: usize) -> Panned {
-        Panned {
-            views: (0..=PAN)
-                .map(|x0| {
-                    let g = wide.crop(x0, width);
-                    let r = core::array::from_fn(|c| {
-                        crate::render::crop(&reference[c], wide.width, x0, width)
-                    });
-                    let f = DENOISERS.iter().map(|&d| Filter::new(d, &g)).collect();
-                    (g, r, f)
-                })
-                .collect(),
+impl Moving {
+    /// Traces `motion` over [`FRAMES`] at [`SIZE`], with each frame's reference of
+    /// [`MOVING_REFERENCE_SPP`] samples in two replicates. The error of the EMA against the
+    /// mean of the replicates is the sampler's plus the reference's, independent of each other;
+    /// half the replicates' difference has the reference's error's spread, so its EMA's mean
+    /// square (the floor) is subtracted.
+    pub fn new(scene: &Scene, tracer: &Tracer, motion: Motion) -> Moving {
+        let path = crate::render::motion::path(scene, tracer, motion, SIZE, FRAMES);
+        let mut frames = Vec::new();
+        let mut references = Vec::new();
+        let mut floor = [[0.0; 4]; 3];
+        let mut history: Option<[Vec<f32>; 3]> = None;
+        let (mut resets, mut moved) = (0.0, 0.0);
+        let count = (MEASURED.end - MEASURED.start) as f64;
+        for (f, (_, g, rep)) in path.into_iter().enumerate() {
+            let (mean, reps) = reference(scene, tracer, &g, MOVING_REFERENCE_SPP, 2, f as u32 + 1);
+            let half: [Vec<f32>; 3] = core::array::from_fn(|c| {
+                reps[0][c]
+                    .iter()
+                    .zip(&reps[1][c])
+                    .map(|(a, b)| 0.5 * (a - b))
+                    .collect()
+            });
+            let next = match (history.take(), &rep) {
+                (Some(h), Some(r)) => core::array::from_fn(|c| r.blend(&h[c], &half[c], ALPHA)),
+                _ => half,
+            };
+            let filters: Vec<Filter> = DENOISERS.iter().map(|&d| Filter::new(d, &g)).collect();
+            if MEASURED.contains(&(f as u32)) {
+                let pixels = g.surface_pixels() as f64;
+                for (c, o) in floor.iter_mut().enumerate() {
+                    for (k, v) in o.iter_mut().enumerate() {
+                        *v += rmse2(&next[c], &filters[k], &g.hit, pixels) / count;
+                    }
+                }
+            }
+            if let Some(r) = &rep {
+                resets += r.reset_share(&g.hit);
+                moved += r.mean_motion(&g.hit, g.width);
+            }
+            history = Some(next);
+            references.push(mean);
+            frames.push((g, rep, filters));
+        }
+        let n = (FRAMES - 1) as f64;
+        Moving {
+            motion,
+            frames,
+            reference: references,
+            floor,
+            reset_share: resets / n,
+            mean_motion: moved / n,
         }
     }
 }
 
-/// `sampler` at `spp` with the camera panning ([`pan`]) and the EMA's history reprojected
-/// ([`reproject`]): the squared errors of the history over [`MEASURED`], and the rays traced.
-/// The sampler is read in screen space, as a game reads it.
+/// `sampler` at `spp` with the camera moving and the EMA's history reprojected: the mean
+/// squared errors of the history over [`MEASURED`] less the reference's floor, and the rays
+/// traced. `anchored`: the sampler is read at each pixel's [`crate::render::anchor::Anchor`],
+/// followed along the motion vectors; else at the screen pixel, as a
+/// game reads a table today.
 pub fn measure_moving(
     scene: &Scene,
     tracer: &Tracer,
-    panned: &Panned,
+    moving: &Moving,
     sampler: Sampler<'_>,
     spp: u32,
+    anchored: bool,
 ) -> ([[f64; 4]; 3], u64) {
+    use crate::render::anchor::{Anchor, follow_frame};
+    let [w, h] = SIZE;
     let mut history: Option<[Vec<f32>; 3]> = None;
+    let mut anchors = vec![Anchor::START; w * h];
+    let mut next_anchors = anchors.clone();
     let mut out = [[0.0; 4]; 3];
     let mut rays = 0;
     let count = (MEASURED.end - MEASURED.start) as f64;
-    for f in 0..FRAMES {
-        let (g, refr, filters) = &panned.views[pan(f)];
-        let (est, r) = render_frame(scene, tracer, g, spp, f, sampler);
+    for (f, (g, rep, filters)) in moving.frames.iter().enumerate() {
+        let f = f as u32;
+        if let (true, Some(r)) = (anchored, rep) {
+            follow_frame(&anchors, &r.prev, w as u32, h as u32, &mut next_anchors);
+            std::mem::swap(&mut anchors, &mut next_anchors);
+        }
+        let (est, r) = if anchored {
+            let a = &anchors;
+            let read = |x: i32, y: i32, f: u32, i: u32| {
+                let [ax, ay] = a[y as usize * w + x as usize].pixel(x, y);
+                sampler(ax, ay, f, i)
+            };
+            render_frame(scene, tracer, g, spp, f, &read)
+        } else {
+            render_frame(scene, tracer, g, spp, f, sampler)
+        };
         rays += r;
+        let refr = &moving.reference[f as usize];
         let err: [Vec<f32>; 3] =
             core::array::from_fn(|c| est[c].iter().zip(&refr[c]).map(|(e, r)| e - r).collect());
-        let next = match history.take() {
-            None => err,
-            Some(h) => {
-                let delta = pan(f) as isize - pan(f - 1) as isize;
-                core::array::from_fn(|c| reproject(&h[c], &err[c], g.width, delta, ALPHA))
-            }
+        let next = match (history.take(), rep) {
+            (Some(h), Some(r)) => core::array::from_fn(|c| r.blend(&h[c], &err[c], ALPHA)),
+            _ => err,
         };
         if MEASURED.contains(&f) {
             let pixels = g.surface_pixels() as f64;
@@ -700,6 +937,11 @@ pub fn measure_moving(
         }
         history = Some(next);
     }
+    for (o, fl) in out.iter_mut().zip(&moving.floor) {
+        for (v, f) in o.iter_mut().zip(fl) {
+            *v = (*v - f).max(0.0);
+        }
+    }
     (out, rays)
 }
 
@@ -709,20 +951,25 @@ RMSE over the pixels that see a surface of filter(estimate - reference), for AO 
   cosine-weighted r = sqrt(u), phi = 2 pi v), an area light's soft shadow (dims 2-3) and one
   diffuse bounce with next-event estimation (dims 0-3); after none / Gaussian sigma 1 / box 5x5 /
   a-trous of 3 passes weighted by the G-buffer. frame: one frame (mean over frames); ema: an EMA
-  with alpha 0.1 over 64 frames, frames 32-63; moving (4 spp, for information): the same EMA
-  with the camera panning 2 px a frame right and back over 16 px, the history reprojected and
-  reset where disoccluded. `tile (F)`: a 128x128 sampler tile baked for F.";
+  with alpha 0.1 over 64 frames, frames 32-63; pan / parallax: the same EMA with the camera
+  moving, every frame traced anew, the history reprojected bilinearly along the motion vectors
+  and reset where a depth / normal test rejects it (pan: the image moves (1.6, 0.7) px a frame
+  out and back; parallax: the eye trucks and dollies, near surfaces move more, surfaces
+  disocclude), against 64-spp references of each frame whose own error is subtracted.
+  `tile (F)`: a 128x128 sampler tile baked for F.";
 
 /// Runs the report on `scene` and writes `render.json`, `render.png` and the images into `out`.
-pub fn run(scene: &Scene, out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
+pub fn run(
+    scene: &Scene,
+    out: &Path,
+    options: Options,
+    log: &mut dyn FnMut(&str),
+) -> Result<Report, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let start = Instant::now();
     let tracer = Tracer::new(&scene.triangles);
     let [w, h] = SIZE;
-    // One G-buffer and reference for the view widened by the moving camera's pan; the static
-    // camera's are their first columns.
-    let wide = GBuffer::panned(scene, &tracer, SIZE, w + PAN);
-    let g = wide.crop(0, w);
+    let g = GBuffer::new(scene, &tracer, w, h, [0, 0]);
     let filters: Vec<Filter> = DENOISERS.iter().map(|&d| Filter::new(d, &g)).collect();
     log(&format!(
         "  scene `{}`: {} triangles, {w}x{h}, {} pixels see a surface",
@@ -738,14 +985,8 @@ pub fn run(scene: &Scene, out: &Path, log: &mut dyn FnMut(&str)) -> Result<Repor
         rayon::current_num_threads()
     ));
     let t = Instant::now();
-    let (wide_ref, wide_reps) = reference(scene, &tracer, &wide, REFERENCE_SPP, REPLICATES, 0);
+    let (refr, reps) = reference(scene, &tracer, &g, REFERENCE_SPP, REPLICATES, 0);
     let ref_seconds = t.elapsed().as_secs_f64();
-    let cut = |v: &[Vec<f32>; 3]| -> [Vec<f32>; 3] {
-        core::array::from_fn(|c| crate::render::crop(&v[c], wide.width, 0, w))
-    };
-    let refr = cut(&wide_ref);
-    let reps: Vec<[Vec<f32>; 3]> = wide_reps.iter().map(cut).collect();
-    let panned = Panned::new(&wide, &wide_ref, w);
     let standard: Vec<[f64; 4]> = (0..3)
         .map(|c| {
             let r: Vec<&[f32]> = reps.iter().map(|r| r[c].as_slice()).collect();
@@ -758,41 +999,74 @@ pub fn run(scene: &Scene, out: &Path, log: &mut dyn FnMut(&str)) -> Result<Repor
         fmt4(&standard[1]),
         fmt4(&standard[2])
     ));
+    let t = Instant::now();
+    let moving: Vec<Moving> = MOTIONS
+        .iter()
+        .map(|&m| Moving::new(scene, &tracer, m))
+        .collect();
+    for m in &moving {
+        log(&format!(
+            "  moving camera `{}`: {:.2} px a frame on average, {:.2} % of surface pixels reset a frame; reference {MOVING_REFERENCE_SPP} spp a frame, floor AO {}, shadow {}",
+            m.motion.name(),
+            m.mean_motion,
+            100.0 * m.reset_share,
+            fmt4(&m.floor[0].map(f64::sqrt)),
+            fmt4(&m.floor[1].map(f64::sqrt)),
+        ));
+    }
+    log(&format!(
+        "  the moving cameras traced and referenced in {:.1} s",
+        t.elapsed().as_secs_f64()
+    ));
     let mut rows = Vec::new();
+    let mut bakes = Vec::new();
     let (mut rays, mut trace_seconds) = (0u64, 0.0f64);
     log(&header());
-    for spp in SPPS {
+    for &spp in options.spps() {
         let ema = EMA_SPPS.contains(&spp);
-        for e in samplers(spp, if ema { FRAMES } else { ONE_FRAME_FRAMES }, log)? {
+        let list = samplers(spp, if ema { FRAMES } else { ONE_FRAME_FRAMES }, log)?;
+        for e in list {
+            if !options.full && FULL_ONLY.contains(&e.name.as_str()) {
+                continue;
+            }
+            bakes.extend(e.bake.clone());
             let t = Instant::now();
             let m = measure(scene, &tracer, &g, &filters, &refr, &*e.f, spp, ema);
             rays += m.rays;
-            let moving = if MOVING_SPPS.contains(&spp) {
-                let (errs, r) = measure_moving(scene, &tracer, &panned, &*e.f, spp);
-                rays += r;
-                Some(errs)
-            } else {
-                None
-            };
-            trace_seconds += t.elapsed().as_secs_f64();
-            let mut modes: Vec<(&str, &[[f64; 4]; 3])> = vec![("frame", &m.frame)];
+            let mut modes: Vec<(String, String, [[f64; 4]; 3])> =
+                vec![(e.name.clone(), "frame".into(), m.frame)];
             if ema {
-                modes.push(("ema", &m.ema));
+                modes.push((e.name.clone(), "ema".into(), m.ema));
             }
-            if let Some(errs) = &moving {
-                modes.push(("moving", errs));
+            let moved = MOVING.iter().find(|(n, _)| *n == e.name);
+            if let (true, Some(&(_, anchor))) = (options.moving_spps().contains(&spp), moved) {
+                for mv in &moving {
+                    for anchored in [false, true] {
+                        if anchored && !(anchor && options.full) {
+                            continue;
+                        }
+                        let (errs, r) = measure_moving(scene, &tracer, mv, &*e.f, spp, anchored);
+                        rays += r;
+                        let name = if anchored {
+                            format!("{} + anchor", e.name)
+                        } else {
+                            e.name.clone()
+                        };
+                        modes.push((name, mv.motion.name().into(), errs));
+                    }
+                }
             }
-            for (mode, errs) in modes {
+            trace_seconds += t.elapsed().as_secs_f64();
+            for (name, mode, errs) in modes {
                 for c in 0..3 {
-                    let row = Row {
-                        sampler: e.name.clone(),
+                    rows.push(Row {
+                        sampler: name.clone(),
                         family: e.family.to_string(),
                         spp,
-                        mode: mode.to_string(),
+                        mode: mode.clone(),
                         integrand: INTEGRANDS[c].to_string(),
                         rmse: errs[c].map(f64::sqrt),
-                    };
-                    rows.push(row);
+                    });
                 }
                 log(&line(&rows[rows.len() - 3..]));
             }
@@ -837,14 +1111,45 @@ pub fn run(scene: &Scene, out: &Path, log: &mut dyn FnMut(&str)) -> Result<Repor
         threads: rayon::current_num_threads(),
         seconds: start.elapsed().as_secs_f64(),
         cells: cells(&rows),
+        moving_cells: moving_cells(&rows),
+        motions: moving
+            .iter()
+            .map(|m| MotionSummary {
+                motion: m.motion.name().into(),
+                mean_motion: m.mean_motion,
+                reset_share: m.reset_share,
+            })
+            .collect(),
+        bakes,
+        full: options.full,
         rows,
     };
     if !report.cells.is_empty() {
         log(
-            "  the tile baked for each cell against the best of rd_ign_r2, Heitz 2019 (both tables), ZSobol and sobol_owen:",
+            "  the tile baked for each cell against the best of r2_pairs, rd_ign_r2, Heitz 2019 (both tables), ZSobol and sobol_owen:",
         );
         for l in describe_cells(&report.cells) {
             log(&l);
+        }
+    }
+    if !report.moving_cells.is_empty() {
+        log(
+            "  with the camera moving: each EMA tile against its own still error and the best peer under the same motion:",
+        );
+        for c in &report.moving_cells {
+            log(&format!(
+                "  {:>4} {:<7} {:<10} {:<9} {:>9.5} (still {:.5}, {:>+6.1}%)  {:>9.5} {:<40} {:>+6.1}%",
+                c.spp,
+                c.integrand,
+                c.denoiser,
+                c.motion,
+                c.tile_rmse,
+                c.still_rmse,
+                c.rise_percent,
+                c.best_rmse,
+                c.best,
+                c.margin_percent
+            ));
         }
     }
     let json = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
@@ -959,43 +1264,100 @@ fn plot(r: &Report, path: &Path) -> Result<(), String> {
     line_plot(path, &series, &labels, true).map(|_| ())
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The pan moves [`PAN_SPEED`] pixels a frame and stays within `0 … PAN`.
-    #[test]
-    fn the_pan_sweeps_and_returns() {
-        for f in 0..200u32 {
-            assert!(pan(f) <= PAN);
-            if f > 0 {
-                assert_eq!(pan(f).abs_diff(pan(f - 1)), PAN_SPEED, "frame {f}");
-            }
-        }
-        assert_eq!((pan(0), pan(PAN as u32 / PAN_SPEED as u32)), (0, PAN));
-    }
-
-    /// Reprojection follows the picture: a history that is a crop of a fixed world image at
-    /// one pan, blended with the crop at the next pan, is that crop wherever the pixel was in
-    /// view, and restarts from the new frame where it was not.
-    #[test]
-    fn reprojection_follows_the_pan() {
-        let (stride, width, height) = (40usize, 24usize, 3usize);
-        let world: Vec<f32> = (0..stride * height).map(|i| (i * 7 % 13) as f32).collect();
-        for (from, to) in [(4usize, 6usize), (10, 8)] {
-            let h = crate::render::crop(&world, stride, from, width);
-            let now = crate::render::crop(&world, stride, to, width);
-            let noisy: Vec<f32> = now.iter().map(|v| v + 100.0).collect();
-            let delta = to as isize - from as isize;
-            let r = reproject(&h, &noisy, width, delta, 0.25);
-            for (i, (&got, &want)) in r.iter().zip(&now).enumerate() {
-                let x = (i % width) as isize + delta;
-                if (0..width as isize).contains(&x) {
-                    assert_eq!(got, want + 25.0, "pixel {i}: the same world point, blended");
-                } else {
-                    assert_eq!(got, want + 100.0, "pixel {i}: disoccluded, restarted");
-                }
-            }
+/// The report as the Markdown document `docs/measured/render.md` is: the stamp, the goal's
+/// cells still and moving, every row, and the bakes beside their estimates.
+pub fn markdown(r: &Report, stamp: &super::stamp::Stamp) -> String {
+    use std::fmt::Write;
+    let mut s = stamp.header("Samplers in a ray-traced scene (`noisebake report render`)");
+    let _ = writeln!(
+        s,
+        "\nScene `{}` ({} triangles), {}×{} pixels ({} see a surface); reference {} spp in {} replicates; the tracer ran {:.1} million rays per second; the report took {:.0} s{}. RMSE over the pixels that see a surface, after the denoiser named. Margins: how much less error the tile leaves than the best peer (r2_pairs, rd_ign_r2, Heitz 2019 both tables, ZSobol, sobol_owen), in percent of the peer's; negative means more.\n",
+        r.scene,
+        r.triangles,
+        r.size[0],
+        r.size[1],
+        r.surface_pixels,
+        r.reference.spp,
+        r.reference.replicates,
+        r.rays_per_second / 1e6,
+        r.seconds,
+        if r.full { " (`--full`)" } else { "" }
+    );
+    if !r.cells.is_empty() {
+        s.push_str("## Camera still: the tile baked for each cell against the best peer\n\n");
+        s.push_str("| spp | integrand | denoiser | mode | tile | best peer | its error | margin |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        for c in &r.cells {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {:.5} | {} | {:.5} | {:+.1} % |",
+                c.spp,
+                c.integrand,
+                c.denoiser,
+                c.mode,
+                c.tile_rmse,
+                c.best,
+                c.best_rmse,
+                c.margin_percent
+            );
         }
     }
+    if !r.motions.is_empty() {
+        s.push_str("\n## Camera moving: the EMA tile against its still error and the best peer under the motion\n\n");
+        for m in &r.motions {
+            let _ = writeln!(
+                s,
+                "- `{}`: the pixels that keep their history move {:.2} px a frame on average; {:.2} % of surface pixels reset a frame.",
+                m.motion,
+                m.mean_motion,
+                100.0 * m.reset_share
+            );
+        }
+        s.push_str("\n| spp | integrand | denoiser | motion | tile moving | tile still | rise | best peer | its error | margin |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        for c in &r.moving_cells {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {:.5} | {:.5} | {:+.1} % | {} | {:.5} | {:+.1} % |",
+                c.spp,
+                c.integrand,
+                c.denoiser,
+                c.motion,
+                c.tile_rmse,
+                c.still_rmse,
+                c.rise_percent,
+                c.best,
+                c.best_rmse,
+                c.margin_percent
+            );
+        }
+    }
+    s.push_str("\n## Every sampler\n\nErrors after Gaussian σ 1 / box 5×5 / à-trous (3 passes).\n\n| sampler | spp | mode | AO | shadow | bounce |\n| --- | --- | --- | --- | --- | --- |\n");
+    for rows in r.rows.chunks(3) {
+        let e = |x: &Row| format!("{:.5} / {:.5} / {:.5}", x.rmse[1], x.rmse[2], x.rmse[3]);
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} |",
+            rows[0].sampler,
+            rows[0].spp,
+            rows[0].mode,
+            e(&rows[0]),
+            e(&rows[1]),
+            e(&rows[2])
+        );
+    }
+    let baked: Vec<&BakeTime> = r.bakes.iter().filter(|b| !b.cached).collect();
+    if !baked.is_empty() {
+        s.push_str("\n## Bakes\n\nEach tile's bake on this machine beside the estimate `gen` and build scripts announce.\n\n| tile | spp | measured | estimated | measured / estimated |\n| --- | --- | --- | --- | --- |\n");
+        for b in baked {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {:.1} s | {:.1} s | {:.2} |",
+                b.tile,
+                b.spp,
+                b.seconds,
+                b.estimate,
+                b.seconds / b.estimate.max(1e-9)
+            );
+        }
+    }
+    s
 }

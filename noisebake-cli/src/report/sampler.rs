@@ -2,7 +2,7 @@
 //! against Heitz et al. 2019's published tables and OpenQMC's blue-noise samplers (feature
 //! `peers`: `blue-noise-sampler`, `openqmc-rs`), Ahmed & Wonka 2020's
 //! hierarchical pixel ordering (ZSobol, [`crate::zsobol`]), the free samplers
-//! (`sampler::rd_ign_r2`, `sampler::sobol_owen`) and white noise, at 1, 2, 4, 8 and 16 spp.
+//! (`sampler::r2_pairs`, `sampler::rd_ign_r2`, `sampler::sobol_owen`) and white noise, at 1, 2, 4, 8 and 16 spp.
 //!
 //! The measure: each pixel of a 256×256 image (twice the 128×128 tile in each direction, so the
 //! tile's wrap is seen) estimates the integral over `[0, 1]²` of test integrands with the mean of
@@ -329,6 +329,8 @@ pub fn run(out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
                 &lattice,
             );
         }
+        let pairs = |x: i32, y: i32, i: u32, d: u32| sampler::r2_pairs::<4>(x, y, i)[d as usize];
+        push(&mut rows, "r2_pairs (free)", "free", spp, 0, None, &pairs);
         let rd = |x: i32, y: i32, i: u32, d: u32| sampler::rd_ign_r2::<4>(x, y, i)[d as usize];
         push(&mut rows, "rd_ign_r2 (free)", "free", spp, 0, None, &rd);
         let so = |x: i32, y: i32, i: u32, d: u32| sampler::sobol_owen::<4>(x, y, i, 1)[d as usize];
