@@ -49,11 +49,11 @@ const FAST_MOVING: f64 = 2.5;
 
 /// Seconds per (pixel, training integrand) of a sampler bake's sweeps, all of them (the number
 /// a bake typically runs before `Schedule::stop_gain` ends it folded in), fixed part.
-const SAMPLER_SWEEPS_A: f64 = 1.8e-7;
+const SAMPLER_SWEEPS_A: f64 = 5.4e-7;
 /// The same, per pixel of the filter's support.
-const SAMPLER_SWEEPS_B: f64 = 3.5e-10;
+const SAMPLER_SWEEPS_B: f64 = 1.05e-9;
 /// Seconds per (pixel, training integrand, sample) of the errors' table, for one frame.
-const SAMPLER_TABLE_C: f64 = 1.2e-8;
+const SAMPLER_TABLE_C: f64 = 3.6e-8;
 /// Each frame of history beyond the first costs this share of the first (the EMA's weights
 /// fold the older frames into running sums).
 const SAMPLER_HISTORY: f64 = 1.0 / 3.0;
@@ -123,8 +123,8 @@ pub fn estimate_with_threads(spec: &TextureSpec, threads: usize) -> Estimate {
             // spp samples of one frame, or of `frames` frames under an EMA), then sweeps in
             // which every pixel scores `candidates` swaps (a pass over its errors) and a share
             // of them update the filter's support; pairs run on their own threads. Fitted to
-            // the 14 tiles of `report render` (1–16 spp, Gaussian and à-trous, with and
-            // without an EMA), which print each bake beside this estimate.
+            // the tiles of `report render` (1, 4 and 16 spp, Gaussian and à-trous, with and
+            // without an EMA; `docs/measured/render.md` lists each bake beside this estimate).
             let s = crate::generate::sampler::Schedule::DEFAULT;
             let pixels = (spec.dims[0] * spec.dims[1]) as f64;
             let len = s.integrands(p) as f64;
