@@ -163,7 +163,8 @@ fn main() {
     let table3 = table3(&all, if quick { 16 } else { 32 });
     print!("{table3}");
     if let Some(path) = markdown {
-        let stamp = noisebake_cli::report::stamp::Stamp::now();
+        let stamp =
+            noisebake_cli::report::stamp::Stamp::now_as("cargo run --release --example cloud --");
         let doc = format!(
             "{}\nStochastic noise at equal time (`cargo run --release --example cloud`): per scene and variant, the RMSE reached in the time the deterministic render takes at 16 and 64 spp, and the time to reach its 64-spp RMSE (ratios below 1 are better); then the paper's Table 3 beside ours.\n\n```text\n{}\n\n{}```\n",
             stamp.header("Stochastic noise at equal time"),

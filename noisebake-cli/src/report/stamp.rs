@@ -21,8 +21,14 @@ pub struct Stamp {
 }
 
 impl Stamp {
-    /// This machine, today, this checkout and this process's command line.
+    /// This machine, today, this checkout and this process's command line, the program named
+    /// `noisebake`.
     pub fn now() -> Stamp {
+        Stamp::now_as("noisebake")
+    }
+
+    /// [`Stamp::now`] with the program named `program` (an example's `cargo run` line).
+    pub fn now_as(program: &str) -> Stamp {
         let cpu = std::fs::read_to_string("/proc/cpuinfo")
             .ok()
             .and_then(|t| {
@@ -53,7 +59,7 @@ impl Stamp {
             .map_or(0, |d| d.as_secs());
         let mut args: Vec<String> = std::env::args().collect();
         if let Some(first) = args.first_mut() {
-            *first = "noisebake".into();
+            *first = program.into();
         }
         Stamp {
             cpu,
