@@ -187,6 +187,33 @@ pub const PEERS: [&str; 6] = [
     "sobol_owen (free)",
 ];
 
+/// The row of `sampler` at `spp`, `integrand` and `mode`.
+fn find<'a>(
+    rows: &'a [Row],
+    sampler: &str,
+    spp: u32,
+    integrand: &str,
+    mode: &str,
+) -> Option<&'a Row> {
+    rows.iter().find(|r| {
+        r.sampler == sampler && r.spp == spp && r.integrand == integrand && r.mode == mode
+    })
+}
+
+/// The row of the [`PEERS`] with the least error after denoiser `k`.
+fn best_peer<'a>(
+    rows: &'a [Row],
+    spp: u32,
+    integrand: &str,
+    mode: &str,
+    k: usize,
+) -> Option<&'a Row> {
+    PEERS
+        .iter()
+        .filter_map(|p| find(rows, p, spp, integrand, mode))
+        .min_by(|a, b| a.rmse[k].total_cmp(&b.rmse[k]))
+}
+
 /// The goal's cells (4 and 16 spp; AO and the shadow; Gaussian σ 1 and the à-trous; one
 /// frame and the EMA), each with the tile baked for it.
 pub fn cells(rows: &[Row]) -> Vec<Cell> {
@@ -201,20 +228,10 @@ pub fn cells(rows: &[Row]) -> Vec<Cell> {
                     } else {
                         format!("tile ({tag})")
                     };
-                    let find = |name: &str| {
-                        rows.iter().find(|r| {
-                            r.sampler == name
-                                && r.spp == spp
-                                && r.integrand == integrand
-                                && r.mode == mode
-                        })
+                    let Some(t) = find(rows, &tile, spp, integrand, mode) else {
+                        continue;
                     };
-                    let Some(t) = find(&tile) else { continue };
-                    let Some(best) = PEERS
-                        .iter()
-                        .filter_map(|p| find(p))
-                        .min_by(|a, b| a.rmse[k].total_cmp(&b.rmse[k]))
-                    else {
+                    let Some(best) = best_peer(rows, spp, integrand, mode, k) else {
                         continue;
                     };
                     out.push(Cell {
@@ -270,23 +287,14 @@ pub fn moving_cells(rows: &[Row]) -> Vec<MovingCell> {
         for motion in MOTIONS.map(|m| m.name()) {
             for integrand in ["ao", "shadow"] {
                 for (k, denoiser) in [(1, "gauss σ1"), (3, "à-trous 3")] {
-                    let find = |name: &str, mode: &str| {
-                        rows.iter().find(|r| {
-                            r.sampler == name
-                                && r.spp == spp
-                                && r.integrand == integrand
-                                && r.mode == mode
-                        })
-                    };
                     let tile = format!("tile ({denoiser}, ema)");
-                    let (Some(t), Some(still)) = (find(&tile, motion), find(&tile, "ema")) else {
+                    let (Some(t), Some(still)) = (
+                        find(rows, &tile, spp, integrand, motion),
+                        find(rows, &tile, spp, integrand, "ema"),
+                    ) else {
                         continue;
                     };
-                    let Some(best) = PEERS
-                        .iter()
-                        .filter_map(|p| find(p, motion))
-                        .min_by(|a, b| a.rmse[k].total_cmp(&b.rmse[k]))
-                    else {
+                    let Some(best) = best_peer(rows, spp, integrand, motion, k) else {
                         continue;
                     };
                     out.push(MovingCell {
@@ -1360,4 +1368,48 @@ pub fn markdown(r: &Report, stamp: &super::stamp::Stamp) -> String {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(sampler: &str, spp: u32, mode: &str, integrand: &str, e: f64) -> Row {
+        Row {
+            sampler: sampler.into(),
+            family: "x".into(),
+            spp,
+            mode: mode.into(),
+            integrand: integrand.into(),
+            rmse: [0.0, e, 0.0, e],
+        }
+    }
+
+    /// A moving cell compares the EMA tile under the motion with its own still EMA row and
+    /// with the best of the peers under the same motion, never a peer's still row.
+    #[test]
+    fn moving_cells_compare_like_with_like() {
+        let rows = vec![
+            row("tile (gauss σ1, ema)", 4, "ema", "ao", 1.0),
+            row("tile (gauss σ1, ema)", 4, "pan", "ao", 1.5),
+            row("r2_pairs (free)", 4, "pan", "ao", 2.0),
+            row("Heitz 2019 (table for this spp)", 4, "pan", "ao", 1.2),
+            row("Heitz 2019 (table for this spp)", 4, "ema", "ao", 0.1),
+            row("white", 4, "pan", "ao", 0.5),
+        ];
+        let moving = moving_cells(&rows);
+        assert_eq!(moving.len(), 1, "{moving:?}");
+        let c = &moving[0];
+        assert_eq!(
+            (c.motion.as_str(), c.denoiser.as_str()),
+            ("pan", "gauss σ1")
+        );
+        assert_eq!(c.best, "Heitz 2019 (table for this spp)");
+        assert!((c.rise_percent - 50.0).abs() < 1e-9);
+        assert!((c.margin_percent - 100.0 * (1.0 - 1.5 / 1.2)).abs() < 1e-9);
+        // The still cells see only the still rows.
+        let still = cells(&rows);
+        assert_eq!(still.len(), 1, "{still:?}");
+        assert_eq!((still[0].mode.as_str(), still[0].best_rmse), ("ema", 0.1));
+    }
 }
