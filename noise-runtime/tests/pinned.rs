@@ -413,6 +413,22 @@ fn samplers_are_pinned() {
             0x3f654936, 0x3e35cc98,
         ],
     );
+    // The sampler built for motion, at 1, 4, 5 and 20 samples a frame (5: a lattice whose N
+    // does not divide 2^32; 20: two blocks of the 16-sample design), checked against a
+    // computation outside the crate from the constants of MOTION_PAIRS.
+    check(
+        "motion_pairs",
+        bits(
+            at.iter()
+                .zip([1u32, 4, 5, 20])
+                .flat_map(|(&(x, y, f), spp)| sampler::motion_pairs::<4>(x, y, f, spp - 1, spp)),
+        ),
+        &[
+            0x00000000, 0x00000000, 0x00000000, 0x00000000, 0x3f67342c, 0x3ea529ae, 0x3f6c05a7,
+            0x3e8bc342, 0x3f764815, 0x3ecb20dc, 0x3d9629c8, 0x3f032f0c, 0x3e751a5c, 0x3f5c1546,
+            0x3e7dab88, 0x3f436240,
+        ],
+    );
     // A baked tile's points: the rank-1 lattice's point n in dimension d (n bit-reversed times
     // the generator) shifted by a key (lattice pairs), or Sobol's Owen-scrambled by it (pairs
     // flagged in the last field); both checked against a computation outside the crate.

@@ -145,8 +145,34 @@ fn nb_u16_unit(v: u32) -> f32 {
     return f32(v) * (1.0 / 65536.0);
 }
 
+// One function per kind of texture a mask becomes, each giving the k-th texel of pixel p.xy in
+// frame p.z with every channel as the runtime's unit value (Texel::unit, Mask3::get_k): take
+// .x of a scalar mask, .xy of a 2-channel one, .xyz of a 3-channel one (uploaded with a fourth
+// channel of padding, which reads 255/256, 65535/65536 or 1).
+//
+// | the mask's format (Rust)     | GPU format        | WGSL binding             | function        |
+// | u8, [u8; 2], [u8; 3], [u8; 4] | r8/rg8/rgba8unorm | texture_2d_array<f32>    | nb_mask_unit_u8  |
+// | u16, [u16; 2 to 4]           | r16/rg16/rgba16uint | texture_2d_array<u32>  | nb_mask_unit_u16 |
+// | f32, [f32; 2 to 4]           | r32/rg32/rgba32float | texture_2d_array<f32> | nb_mask_unit_f32 |
+
+// An 8-bit mask: each channel v/256, bit for bit.
+fn nb_mask_unit_u8(t: texture_2d_array<f32>, p: vec3<i32>, k: u32) -> vec4<f32> {
+    return round(nb_mask_load(t, p, k) * 255.0) * (1.0 / 256.0);
+}
+
+// A 16-bit mask: each channel v/65536, bit for bit.
+fn nb_mask_unit_u16(t: texture_2d_array<u32>, p: vec3<i32>, k: u32) -> vec4<f32> {
+    return vec4<f32>(nb_mask_load_u(t, p, k)) * (1.0 / 65536.0);
+}
+
+// A float mask: the values as stored.
+fn nb_mask_unit_f32(t: texture_2d_array<f32>, p: vec3<i32>, k: u32) -> vec4<f32> {
+    return nb_mask_load(t, p, k);
+}
+
 // The k-th value of pixel p.xy in frame p.z of a scalar 8-bit mask, in [0, 1) as
-// Mask3::get_k_unit gives it.
+// Mask3::get_k_unit gives it: nb_mask_unit_u8(t, p, k).x. For a 16-bit or float mask, use
+// nb_mask_unit_u16 or nb_mask_unit_f32 (a 16-bit mask does not bind as texture_2d_array<f32>).
 fn nb_mask_unit(t: texture_2d_array<f32>, p: vec3<i32>, k: u32) -> f32 {
     return nb_unorm8_unit(nb_mask_load(t, p, k).x);
 }
@@ -414,6 +440,87 @@ fn nb_sobol_owen(p: vec2<i32>, frame: u32, seed: u32) -> vec4<f32> {
         nb_owen(s.x, nb_seed_combine(pixel, 0u)), nb_owen(s.y, nb_seed_combine(pixel, 1u)),
         nb_owen(s.z, nb_seed_combine(pixel, 2u)), nb_owen(s.w, nb_seed_combine(pixel, 3u)),
     ));
+}
+
+// A free sampler built for a moving camera (sampler::motion_pairs): per pair and frame a
+// rank-1 lattice {i·(1, z)/N} moved by a shift linear in the pixel and the frame,
+// c = frac(x·a + y·b + frame·g) in 32-bit fixed point; the second pair's sample i is its
+// lattice point i + h, h a hash of the pixel and frame. The constants are the runtime's
+// MOTION_PAIRS, two vec4 per spp and pair: (z, a.x, a.y, b.x), (b.y, g.x, g.y, 0).
+// motion_pairs table (noisebake search-sampler --all --wgsl): begin
+var<private> NB_MOTION: array<vec4<u32>, 64> = array<vec4<u32>, 64>(
+    vec4<u32>(0u, 0x8c65a2ddu, 0xe2062926u, 0x51e5544eu), vec4<u32>(0x9b5489eau, 0x0dfda986u, 0x3954f93fu, 0u), // spp 1, pair 0
+    vec4<u32>(0u, 0xedd5e720u, 0x968138c8u, 0xa30d8a18u), vec4<u32>(0x458dc40du, 0x2d3f3f55u, 0x3484a983u, 0u), // spp 1, pair 1
+    vec4<u32>(1u, 0x9369ae36u, 0x0e6925adu, 0xbfedd09cu), vec4<u32>(0x65034d56u, 0x25744af8u, 0x301bf6ddu, 0u), // spp 2, pair 0
+    vec4<u32>(1u, 0x65df569eu, 0xa029aa08u, 0xd9278108u), vec4<u32>(0x8a6cb80au, 0xc360b13eu, 0xa902fcf2u, 0u), // spp 2, pair 1
+    vec4<u32>(1u, 0x2438d7e1u, 0x5f8f3aebu, 0x5ed227ceu), vec4<u32>(0x031ada04u, 0x4bd477b8u, 0x6c2e6462u, 0u), // spp 3, pair 0
+    vec4<u32>(1u, 0x52d1fa2bu, 0x1aab9d1du, 0x65c79221u), vec4<u32>(0x599fb012u, 0xde8a094au, 0x2486c583u, 0u), // spp 3, pair 1
+    vec4<u32>(1u, 0x93a594d6u, 0x0888cefau, 0x44888421u), vec4<u32>(0x5f42bb10u, 0xeee20c7eu, 0x9fc8b024u, 0u), // spp 4, pair 0
+    vec4<u32>(1u, 0x4b8e9a65u, 0xa7b1b101u, 0x29a471f0u), vec4<u32>(0x8b5edcf0u, 0xf5086b5cu, 0x3e8003f8u, 0u), // spp 4, pair 1
+    vec4<u32>(1u, 0xcd13c5aeu, 0x62921828u, 0x4d74eb6fu), vec4<u32>(0x14f7e051u, 0xa0f970fdu, 0x890ca9c1u, 0u), // spp 5, pair 0
+    vec4<u32>(1u, 0xb7851f83u, 0x96470b8cu, 0x1a3d6a75u), vec4<u32>(0x9ecc7cd8u, 0xece86fdbu, 0xf17a26d2u, 0u), // spp 5, pair 1
+    vec4<u32>(1u, 0x4a99fb4eu, 0xdc682919u, 0x384083ffu), vec4<u32>(0x85d50a6au, 0x7b59dbd9u, 0x90bf748cu, 0u), // spp 6, pair 0
+    vec4<u32>(1u, 0xdec7b8f2u, 0x7dc9fe58u, 0x87c7fe63u), vec4<u32>(0xcba984c9u, 0xcb4e8c2fu, 0xec1a31f8u, 0u), // spp 6, pair 1
+    vec4<u32>(1u, 0xd3b30836u, 0x8cb1cdbfu, 0xb8eeeb61u), vec4<u32>(0xc4296aa8u, 0xa5310778u, 0x8557d989u, 0u), // spp 7, pair 0
+    vec4<u32>(3u, 0xc1a044f7u, 0x92d9fe47u, 0xaf4488aeu), vec4<u32>(0xf66440d9u, 0x4ff984cbu, 0x2e2dca56u, 0u), // spp 7, pair 1
+    vec4<u32>(3u, 0xa9f18421u, 0x44b3cf87u, 0x620f1b2du), vec4<u32>(0x28f056adu, 0x89470492u, 0xed043e68u, 0u), // spp 8, pair 0
+    vec4<u32>(3u, 0xb452fa2eu, 0x40fde7bcu, 0x41531651u), vec4<u32>(0x34530da3u, 0x08278d85u, 0x5745bbf3u, 0u), // spp 8, pair 1
+    vec4<u32>(2u, 0x64024f64u, 0x70330486u, 0xe0303e99u), vec4<u32>(0x5ee18d5fu, 0xb9a0433eu, 0x757f7417u, 0u), // spp 9, pair 0
+    vec4<u32>(2u, 0xf065e6fcu, 0xa37991d9u, 0x66b83356u), vec4<u32>(0x6eeabe60u, 0x308d5ad2u, 0x6cb375d8u, 0u), // spp 9, pair 1
+    vec4<u32>(3u, 0xb9767f60u, 0xe4d4eaa8u, 0x360965beu), vec4<u32>(0x77f77d56u, 0x22a10253u, 0x710bf80bu, 0u), // spp 10, pair 0
+    vec4<u32>(3u, 0x56cbeb37u, 0xa7571536u, 0x997390aau), vec4<u32>(0xf1aa13a6u, 0x1b604a5bu, 0xdca097ddu, 0u), // spp 10, pair 1
+    vec4<u32>(3u, 0xe159aeaeu, 0xb048f565u, 0x6a5d0fb4u), vec4<u32>(0x692d0eccu, 0x55fa8853u, 0xcd3ae946u, 0u), // spp 11, pair 0
+    vec4<u32>(3u, 0x438a0440u, 0x5791be3du, 0x70b91816u), vec4<u32>(0xf4c89d9cu, 0x6ba71537u, 0x5958bfe9u, 0u), // spp 11, pair 1
+    vec4<u32>(5u, 0xd7a2eeeeu, 0x95c612d2u, 0x90ca18ceu), vec4<u32>(0x89edcf65u, 0xae896724u, 0x41196248u, 0u), // spp 12, pair 0
+    vec4<u32>(1u, 0xc41a23d6u, 0x8fb821e3u, 0x5077d136u), vec4<u32>(0xd6cf5b5fu, 0xae95832fu, 0x62d78e17u, 0u), // spp 12, pair 1
+    vec4<u32>(4u, 0x55dbeb44u, 0x4e7b7f22u, 0x95e29c22u), vec4<u32>(0x5eb0f8e3u, 0x7d8af120u, 0xa2f85674u, 0u), // spp 13, pair 0
+    vec4<u32>(6u, 0x4aa6c86au, 0x714d4aadu, 0x1fa90fa7u), vec4<u32>(0x319ee702u, 0x8a6583e7u, 0x06a0a2b8u, 0u), // spp 13, pair 1
+    vec4<u32>(1u, 0x8972120cu, 0xc8d53563u, 0x461e7094u), vec4<u32>(0x7376d394u, 0xe9bba021u, 0xd6a41d4eu, 0u), // spp 14, pair 0
+    vec4<u32>(3u, 0x657dbba3u, 0xa3d418b9u, 0xbc9b96a8u), vec4<u32>(0xb95ee2a4u, 0x893ff394u, 0x0521a1cbu, 0u), // spp 14, pair 1
+    vec4<u32>(1u, 0x6bbc7419u, 0x413f176bu, 0x521e2301u), vec4<u32>(0x96d255cau, 0x979e1855u, 0x2b8990dfu, 0u), // spp 15, pair 0
+    vec4<u32>(7u, 0xb33f8926u, 0x7d820fbbu, 0x2814a8bcu), vec4<u32>(0x2cc142b3u, 0xebc47ae6u, 0xbf4b48b3u, 0u), // spp 15, pair 1
+    vec4<u32>(5u, 0x4ab882afu, 0x066026c0u, 0xc76c755fu), vec4<u32>(0x99af903au, 0xe0de020cu, 0x4feb895fu, 0u), // spp 16, pair 0
+    vec4<u32>(5u, 0x437e1de1u, 0xa5e735adu, 0x6ab883ddu), vec4<u32>(0x11f7cdcdu, 0xc5d3b8d9u, 0xd3ccf6a3u, 0u), // spp 16, pair 1
+);
+// motion_pairs table: end
+
+const NB_MOTION_PAIRING_SEED = 0x6d6f7469u;
+
+// Point i of the n-point lattice of spp n's pair `pair`, moved by its shift at pixel p in
+// frame f, as 32-bit fractions.
+fn nb_motion_pair(p: vec2<i32>, f: u32, i: u32, n: u32, pair: u32) -> vec2<u32> {
+    let k = ((n - 1u) * 2u + pair) * 2u;
+    let t0 = NB_MOTION[k];
+    let t1 = NB_MOTION[k + 1u];
+    let u = bitcast<vec2<u32>>(p);
+    let c = vec2<u32>(u.x * t0.y + u.y * t0.w + f * t1.y, u.x * t0.z + u.y * t1.x + f * t1.z);
+    var ux = c.x;
+    if (n > 1u) {
+        // floor(2^32 / n): (2^32 − 1) / n, plus one where n divides 2^32.
+        let r = 0xffffffffu / n + select(0u, 1u, 0xffffffffu % n == n - 1u);
+        ux = i * r + nb_mulhi(c.x, r);
+    }
+    return vec2<u32>(ux, t0.x * ux + c.y);
+}
+
+// Sample i of frame `frame` at pixel p for a renderer taking spp samples per pixel per frame,
+// four dimensions as 32-bit fractions (sampler::motion_pairs::<4>; .xy for one pair).
+fn nb_motion_pairs_bits(p: vec2<i32>, frame: u32, i: u32, spp: u32) -> vec4<u32> {
+    var n = max(spp, 1u);
+    var f = frame + i / n;
+    var s = i % n;
+    if (n > 16u) {
+        let blocks = (n + 15u) / 16u;
+        f = f * blocks + s / 16u;
+        s = s % 16u;
+        n = 16u;
+    }
+    let h = nb_hash3(vec3<i32>(p, bitcast<i32>(f)), NB_MOTION_PAIRING_SEED);
+    return vec4<u32>(nb_motion_pair(p, f, s, n, 0u), nb_motion_pair(p, f, (s + h % n) % n, n, 1u));
+}
+
+fn nb_motion_pairs(p: vec2<i32>, frame: u32, i: u32, spp: u32) -> vec4<f32> {
+    return nb_to_unit4(nb_motion_pairs_bits(p, frame, i, spp));
 }
 
 // The tiles' rank-1 lattice generator, one odd multiplier per dimension (TILE_GENERATOR).

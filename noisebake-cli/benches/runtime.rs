@@ -1,7 +1,8 @@
 //! Runtime lookups against hand indexing (noise-runtime issue): `Mask3::get` / `get_k` on a
 //! 128×128×64 u16 mask vs `u16::from_le_bytes` on the same bytes with `&` wrapping, and the
 //! low-discrepancy grids, and one value of a 128×128 sampler tile (4 spp, 4 dimensions: a
-//! lattice pair and a Sobol pair) beside the free samplers `rd_ign_r2` and `sobol_owen`, ns per
+//! lattice pair and a Sobol pair) beside the free samplers `rd_ign_r2`, `r2_pairs`,
+//! `motion_pairs` and `sobol_owen`, ns per
 //! lookup. Exactness is tested in noise-runtime's tests.
 //!
 //! `cargo bench -p noisebake-cli --bench runtime`
@@ -115,6 +116,34 @@ fn lookups(c: &mut Criterion) {
             reads
                 .iter()
                 .map(|&(x, y, f, i, _)| sampler::rd_ign_r2::<2>(x, y, f * 4 + i)[0])
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("sampler::r2_pairs::<2> (per value)", |b| {
+        b.iter(|| {
+            reads
+                .iter()
+                .map(|&(x, y, f, i, _)| sampler::r2_pairs::<2>(x, y, f * 4 + i)[0])
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("sampler::motion_pairs::<2> spp 4 (per value)", |b| {
+        b.iter(|| {
+            reads
+                .iter()
+                .map(|&(x, y, f, i, _)| sampler::motion_pairs::<2>(x, y, f, i, black_box(4))[0])
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("sampler::motion_pairs::<4> spp 4 (four values)", |b| {
+        b.iter(|| {
+            reads
+                .iter()
+                .map(|&(x, y, f, i, _)| {
+                    sampler::motion_pairs::<4>(x, y, f, i, black_box(4))
+                        .iter()
+                        .sum::<f32>()
+                })
                 .sum::<f32>()
         })
     });

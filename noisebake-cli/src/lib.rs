@@ -8,6 +8,7 @@
 pub mod analysis;
 pub mod cache;
 pub mod export;
+pub mod motion_search;
 pub mod points;
 #[cfg(feature = "render")]
 pub mod render;

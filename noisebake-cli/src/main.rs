@@ -93,6 +93,56 @@ enum Command {
         #[arg(long)]
         analyze: bool,
     },
+    /// Write what a free sampler of the runtime returns, for checks outside this project:
+    /// float32 (frames, H, W, spp, 4) in a .npy, sample `i` of frame `f` at pixel (x, y) read
+    /// as its documented use reads it (`--list`: the samplers' names and their reads).
+    ExportSampler {
+        /// The sampler (see `--list`).
+        #[arg(required_unless_present = "list")]
+        name: Option<String>,
+        /// Print the samplers this command knows, one a line, with how each is read.
+        #[arg(long)]
+        list: bool,
+        /// Width x height.
+        #[arg(long, default_value = "128x128")]
+        dims: String,
+        /// Samples per pixel per frame.
+        #[arg(long, default_value_t = 4)]
+        spp: u32,
+        /// Frames.
+        #[arg(long, default_value_t = 64)]
+        frames: u32,
+        /// The .npy file to write.
+        #[arg(long, required_unless_present = "list")]
+        out: Option<PathBuf>,
+    },
+    /// Search the constants of the free sampler `motion_pairs` (a rank-1 lattice per pair and
+    /// frame, moved by a shift linear in the pixel and the frame) by its modelled error under a
+    /// still camera, one frame and pans in every direction, against `r2_pairs`; prints each
+    /// choice and its error ratios, and with `--out` and `--wgsl` writes the runtime's tables.
+    /// About 5–20 s per spp on 2 cores; `--all` runs every spp from 1 to 16 (about 2 minutes).
+    SearchSampler {
+        /// Samples per frame to search (1 to 16).
+        #[arg(long, conflicts_with = "all")]
+        spp: Option<u32>,
+        /// Every spp from 1 to 16.
+        #[arg(long)]
+        all: bool,
+        /// Random shifts tried per lattice generator.
+        #[arg(long, default_value_t = 65536)]
+        samples: usize,
+        /// Seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// With `--all`: write the table as Rust source (what
+        /// `noise-runtime/src/sampler/motion_table.rs` is).
+        #[arg(long, requires = "all")]
+        out: Option<PathBuf>,
+        /// With `--all`: replace the table in this WGSL file (between its markers; what
+        /// `noise-runtime/wgsl/noisebake.wgsl` holds).
+        #[arg(long, requires = "all")]
+        wgsl: Option<PathBuf>,
+    },
     /// A cache directory: `list` its entries (spec, size, last use), `verify` every entry
     /// (exit code 1 if any is corrupt; for CI), `prune` the ones no build uses any more.
     Cache {
@@ -142,6 +192,11 @@ enum Command {
         /// and light are placed around its bounds).
         #[arg(long)]
         scene: Option<PathBuf>,
+        /// For `render`: only the samplers whose names contain one of these words
+        /// (comma-separated, e.g. `--samplers motion_pairs,r2_pairs`): a quick look at a few.
+        /// The goal tables compare the tiles with every peer, so they need a full run.
+        #[arg(long, value_delimiter = ',')]
+        samplers: Vec<String>,
         /// For `render` and `taa`: also write the results as a Markdown document stamped with
         /// the machine, date, commit and command (what `docs/measured/render.md` and
         /// `taa.md` are).
@@ -248,6 +303,22 @@ fn main() -> ExitCode {
             analyze,
         } => points_cmd(&method, n, seed, &out, analyze),
         Command::Cache { action } => cache_cmd(action),
+        Command::ExportSampler {
+            name,
+            list,
+            dims,
+            spp,
+            frames,
+            out,
+        } => export_sampler(name.as_deref(), list, &dims, spp, frames, out.as_deref()),
+        Command::SearchSampler {
+            spp,
+            all,
+            samples,
+            seed,
+            out,
+            wgsl,
+        } => search_sampler(spp, all, samples, seed, out.as_deref(), wgsl.as_deref()),
         Command::Report {
             section,
             json,
@@ -256,12 +327,15 @@ fn main() -> ExitCode {
             paper,
             quick,
             scene,
+            samplers,
             markdown,
         } => {
             if section == "render" {
-                render_report(&out, scene.as_deref(), full, markdown.as_deref())
+                render_report(&out, scene.as_deref(), full, &samplers, markdown.as_deref())
             } else if scene.is_some() {
                 Err("--scene is for `report render`".to_string())
+            } else if !samplers.is_empty() {
+                Err("--samplers is for `report render`".to_string())
             } else if section == "taa" {
                 taa_report(&out, markdown.as_deref())
             } else if markdown.is_some() {
@@ -278,6 +352,172 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// Fails, before any work, if `path` cannot be written: its directory is missing, the name is
+/// one the file system refuses (too long, say), or it is a directory or read-only. A file that
+/// did not exist is not left behind.
+fn check_output_path(path: &Path) -> Result<(), String> {
+    let shown = path.display();
+    if path.is_dir() {
+        return Err(format!("{shown}: is a directory, not a file to write"));
+    }
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        return Err(format!(
+            "{shown}: the directory {} does not exist",
+            dir.display()
+        ));
+    }
+    if path.exists() {
+        std::fs::OpenOptions::new()
+            .append(true)
+            .open(path)
+            .map(drop)
+            .map_err(|e| format!("{shown}: cannot be written: {e}"))
+    } else {
+        std::fs::File::create_new(path).map_err(|e| format!("{shown}: cannot be written: {e}"))?;
+        std::fs::remove_file(path).map_err(|e| format!("{shown}: {e}"))
+    }
+}
+
+/// `export-sampler`: a free sampler's values as float32 (frames, H, W, spp, 4).
+fn export_sampler(
+    name: Option<&str>,
+    list: bool,
+    dims: &str,
+    spp: u32,
+    frames: u32,
+    out: Option<&Path>,
+) -> Result<(), String> {
+    use noisebake_cli::export::samplers::FREE;
+    if list {
+        for s in FREE {
+            println!("{}", s.name);
+        }
+        return Ok(());
+    }
+    let (Some(name), Some(out)) = (name, out) else {
+        return Err("say a sampler's name and --out FILE.npy (or --list)".into());
+    };
+    let sampler = FREE.iter().find(|s| s.name == name).ok_or_else(|| {
+        let names: Vec<&str> = FREE.iter().map(|s| s.name).collect();
+        format!("no free sampler `{name}`; there are {}", names.join(", "))
+    })?;
+    let [w, h] = match dims
+        .split('x')
+        .map(str::parse::<usize>)
+        .collect::<Result<Vec<_>, _>>()
+        .as_deref()
+    {
+        Ok(&[w, h]) if w > 0 && h > 0 => [w, h],
+        _ => return Err(format!("--dims {dims}: expected WxH, e.g. 128x128")),
+    };
+    if spp == 0 || frames == 0 {
+        return Err("--spp and --frames must be positive".into());
+    }
+    let values = (frames as u64)
+        .checked_mul((w * h) as u64)
+        .and_then(|v| v.checked_mul(spp as u64 * 4))
+        .filter(|&v| v <= 1 << 28)
+        .ok_or(format!(
+            "{frames} frames of {w}x{h} at {spp} spp is over 2^28 values (1 GiB): export less"
+        ))?;
+    check_output_path(out)?;
+    let mut data = Vec::with_capacity(values as usize);
+    for f in 0..frames {
+        for y in 0..h as i32 {
+            for x in 0..w as i32 {
+                for i in 0..spp {
+                    data.extend((sampler.read)(x, y, f, i, spp));
+                }
+            }
+        }
+    }
+    let shape = [frames as usize, h, w, spp as usize, 4];
+    write_atomic(out, &npy::f32_array(&shape, &data))
+        .map_err(|e| format!("{}: {e}", out.display()))?;
+    println!(
+        "{}: `{name}` ({}), float32 {shape:?}",
+        out.display(),
+        sampler.read_as
+    );
+    Ok(())
+}
+
+/// `search-sampler`: the constants of `motion_pairs`.
+fn search_sampler(
+    spp: Option<u32>,
+    all: bool,
+    samples: usize,
+    seed: u64,
+    out: Option<&Path>,
+    wgsl: Option<&Path>,
+) -> Result<(), String> {
+    use noisebake_cli::motion_search as ms;
+    let spps: Vec<u32> = match (spp, all) {
+        (_, true) => (1..=16).collect(),
+        (Some(n), false) if (1..=16).contains(&n) => vec![n],
+        (Some(n), false) => return Err(format!("--spp {n}: 1 to 16")),
+        (None, false) => return Err("say --spp N (1 to 16) or --all".into()),
+    };
+    if let Some(path) = out {
+        check_output_path(path)?;
+    }
+    let wgsl_text = match wgsl {
+        Some(path) => {
+            let text =
+                std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+            let (Some(a), Some(b)) = (text.find(ms::WGSL_BEGIN), text.find(ms::WGSL_END)) else {
+                return Err(format!(
+                    "{}: no `{}` … `{}` markers to put the table between",
+                    path.display(),
+                    ms::WGSL_BEGIN,
+                    ms::WGSL_END
+                ));
+            };
+            Some((path, text, a, b + ms::WGSL_END.len()))
+        }
+        None => None,
+    };
+    let budget = ms::Budget {
+        samples,
+        ..ms::Budget::default()
+    };
+    eprintln!(
+        "searching {} spp value(s) on {} threads: about {} s each on 2 cores",
+        spps.len(),
+        rayon::current_num_threads(),
+        (ms::estimate_seconds(budget) * 2.0 / rayon::current_num_threads() as f64).round()
+    );
+    let start = Instant::now();
+    let setup = ms::Setup::new();
+    let mut rows = Vec::new();
+    for n in spps {
+        let t = Instant::now();
+        let pairs = ms::search(n, &setup, budget, seed);
+        println!("spp {n} ({:.0} s):", t.elapsed().as_secs_f64());
+        for (k, p) in pairs.iter().enumerate() {
+            println!("  pair {k}: {}", ms::literal(p));
+            for line in ms::describe(n, p, &setup) {
+                println!("    {line}");
+            }
+        }
+        rows.push(pairs);
+    }
+    if let Some(path) = out {
+        write_atomic(path, ms::table_source(&rows).as_bytes())
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    if let Some((path, text, a, b)) = wgsl_text {
+        let text = format!("{}{}{}", &text[..a], ms::table_wgsl(&rows), &text[b..]);
+        write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("wrote the table into {}", path.display());
+    }
+    eprintln!("{:.0} s in all", start.elapsed().as_secs_f64());
+    Ok(())
 }
 
 /// Generates with a progress bar on stderr that appears once a generation has run for 2 s,
@@ -646,6 +886,7 @@ fn render_report(
     out: &Path,
     scene: Option<&Path>,
     full: bool,
+    samplers: &[String],
     markdown: Option<&Path>,
 ) -> Result<(), String> {
     #[cfg(feature = "render")]
@@ -663,7 +904,10 @@ fn render_report(
         println!(
             "  (Heitz et al. 2019's tables and OpenQMC are measured with `--features peers`: cargo run --release -p noisebake-cli --features peers -- report render)"
         );
-        let options = render::Options { full };
+        let options = render::Options {
+            full,
+            only: samplers.to_vec(),
+        };
         let r = render::run(&scene, out, options, &mut |s| println!("{s}"))?;
         if let Some(path) = markdown {
             let md = render::markdown(&r, &noisebake_cli::report::stamp::Stamp::now());
@@ -680,7 +924,7 @@ fn render_report(
     }
     #[cfg(not(feature = "render"))]
     {
-        let _ = (out, scene, full, markdown);
+        let _ = (out, scene, full, samplers, markdown);
         Err("this noisebake was built without the `render` feature (the ray tracer)".to_string())
     }
 }

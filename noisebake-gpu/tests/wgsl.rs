@@ -63,6 +63,9 @@ fn library_passes_naga_validation() {
     for name in [
         "nb_mask_coord_k",
         "nb_mask_load",
+        "nb_mask_unit_u8",
+        "nb_mask_unit_u16",
+        "nb_mask_unit_f32",
         "nb_r2_frame",
         "nb_plus_frame",
         "nb_ign_frame",
@@ -72,6 +75,7 @@ fn library_passes_naga_validation() {
         "nb_rd3",
         "nb_rd2_ign_r2",
         "nb_r2_pairs",
+        "nb_motion_pairs",
         "nb_rd3_ign_r2",
         "nb_rd4_ign_r2",
         "nb_sobol_owen",
@@ -230,7 +234,7 @@ fn samplers_match_bit_for_bit() {
             })
             .collect();
         let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
-        const OUT: usize = 26;
+        const OUT: usize = 30;
         let kernel = kernel(
             "vec4<i32>",
             "@group(0) @binding(1) var<storage, read_write> outp: array<u32>;",
@@ -255,7 +259,9 @@ fn samplers_match_bit_for_bit() {
              outp[o + 17u] = r2.x; outp[o + 18u] = r2.y;
              outp[o + 19u] = r3.x; outp[o + 20u] = r3.y; outp[o + 21u] = r3.z;
              let q = bitcast<vec4<u32>>(nb_r2_pairs(p.xy, f));
-             outp[o + 22u] = q.x; outp[o + 23u] = q.y; outp[o + 24u] = q.z; outp[o + 25u] = q.w;"
+             outp[o + 22u] = q.x; outp[o + 23u] = q.y; outp[o + 24u] = q.z; outp[o + 25u] = q.w;
+             let m = bitcast<vec4<u32>>(nb_motion_pairs(p.xy, f, s % 23u, (s >> 8u) % 21u));
+             outp[o + 26u] = m.x; outp[o + 27u] = m.y; outp[o + 28u] = m.z; outp[o + 29u] = m.w;"
             ),
         );
         let out = words(&run(g, &kernel, &bytes_of(&flat), N, N * OUT * 4));
@@ -272,6 +278,7 @@ fn samplers_match_bit_for_bit() {
                 sampler::rd::<2>(f, [rot[0], rot[1]]).to_vec(),
                 sampler::rd::<3>(f, rot).to_vec(),
                 sampler::r2_pairs::<4>(x, y, f).to_vec(),
+                sampler::motion_pairs::<4>(x, y, f, s % 23, (s >> 8) % 21).to_vec(),
             ]
             .concat();
             for (j, c) in cpu.iter().enumerate() {
@@ -619,25 +626,27 @@ fn check_mask_format<T: noisebake::Texel>(g: &Gpu, seed: u64) {
         .collect();
     let flat: Vec<i32> = inputs.iter().flatten().copied().collect();
     let integer = cb == 2;
+    // The raw load, and the unit values through the function the docs name for this kind of
+    // texture.
     let (ty, load, unit) = if integer {
-        ("u32", "nb_mask_load_u", "nb_u16_unit(v.x)")
+        ("u32", "nb_mask_load_u", "nb_mask_unit_u16")
     } else if cb == 1 {
-        ("f32", "nb_mask_load", "nb_unorm8_unit(v.x)")
+        ("f32", "nb_mask_load", "nb_mask_unit_u8")
     } else {
-        ("f32", "nb_mask_load", "v.x")
+        ("f32", "nb_mask_load", "nb_mask_unit_f32")
     };
     let kernel = kernel(
         "vec4<i32>",
         &format!(
             "@group(0) @binding(1) var<storage, read_write> outp: array<vec4<u32>>;
-             @group(0) @binding(2) var<storage, read_write> units: array<f32>;
+             @group(0) @binding(2) var<storage, read_write> units: array<vec4<f32>>;
              @group(0) @binding(3) var mask: texture_2d_array<{ty}>;"
         ),
         &format!(
             "let p = inp[i];
              let v = {load}(mask, p.xyz, bitcast<u32>(p.w));
              outp[i] = bitcast<vec4<u32>>(v);
-             units[i] = {unit};"
+             units[i] = {unit}(mask, p.xyz, bitcast<u32>(p.w));"
         ),
     );
     let m = inputs.len();
@@ -649,7 +658,7 @@ fn check_mask_format<T: noisebake::Texel>(g: &Gpu, seed: u64) {
             &[
                 Binding::Input(&bytes_of(&flat)),
                 Binding::Output(m * 16),
-                Binding::Output(m * 4),
+                Binding::Output(m * 16),
                 Binding::Texture(&texture),
             ],
         )
@@ -659,11 +668,20 @@ fn check_mask_format<T: noisebake::Texel>(g: &Gpu, seed: u64) {
     for (i, &[x, y, t, k]) in inputs.iter().enumerate() {
         let a = addr.get_k(x, y, t, k as u32) as usize;
         assert_eq!(
-            units[i].to_bits(),
+            units[4 * i].to_bits(),
             mask.get_k_unit(x, y, t, k as u32).to_bits(),
             "{name}: unit value at {:?}",
             inputs[i]
         );
+        let texel = mask.get_k(x, y, t, k as u32);
+        for c in 0..T::CHANNELS {
+            assert_eq!(
+                units[4 * i + c].to_bits(),
+                texel.unit(c).to_bits(),
+                "{name}: channel {c}'s unit value at {:?}",
+                inputs[i]
+            );
+        }
         for c in 0..tex.format.channels() {
             let got = vals[4 * i + c];
             let raw = &bytes[(a * T::CHANNELS + c) * cb..];

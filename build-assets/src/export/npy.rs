@@ -10,6 +10,19 @@ pub fn to_npy(t: &Texture) -> Vec<u8> {
     if t.format.channels > 1 {
         shape.push(t.format.channels as usize);
     }
+    with_header(t.format.scalar.npy_descr(), &shape, &t.data)
+}
+
+/// The complete `.npy` file of an `f32` array of `shape` (C order, the last axis fastest),
+/// for tools that export samples or frames rather than textures.
+pub fn f32_array(shape: &[usize], data: &[f32]) -> Vec<u8> {
+    debug_assert_eq!(shape.iter().product::<usize>(), data.len());
+    let bytes: Vec<u8> = data.iter().flat_map(|v| v.to_le_bytes()).collect();
+    with_header("<f4", shape, &bytes)
+}
+
+/// `data` behind a version 1.0 header of type `descr` and `shape`.
+fn with_header(descr: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
     let shape_str = match shape.len() {
         1 => format!("({},)", shape[0]),
         _ => format!(
@@ -21,20 +34,18 @@ pub fn to_npy(t: &Texture) -> Vec<u8> {
                 .join(", ")
         ),
     };
-    let mut header = format!(
-        "{{'descr': '{}', 'fortran_order': False, 'shape': {shape_str}, }}",
-        t.format.scalar.npy_descr()
-    );
+    let mut header =
+        format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape_str}, }}");
     // Magic (6) + version (2) + header length (2) + header, padded with spaces and a newline to
     // a multiple of 64 bytes.
     let total = 10 + header.len() + 1;
     header.push_str(&" ".repeat(total.next_multiple_of(64) - total));
     header.push('\n');
-    let mut out = Vec::with_capacity(10 + header.len() + t.data.len());
+    let mut out = Vec::with_capacity(10 + header.len() + data.len());
     out.extend_from_slice(b"\x93NUMPY\x01\x00");
     out.extend_from_slice(&(header.len() as u16).to_le_bytes());
     out.extend_from_slice(header.as_bytes());
-    out.extend_from_slice(&t.data);
+    out.extend_from_slice(data);
     out
 }
 

@@ -18,6 +18,11 @@
 //!   each pixel's first 2^m frames form a (0, m, 2)-net in every pair of its first two
 //!   dimensions.
 //!
+//! - [`motion_pairs`]: built for a moving camera — every frame a rank-1 lattice per pair of
+//!   dimensions, moved by a shift linear in the pixel and the frame, so a surface the camera
+//!   moves across still walks a low-discrepancy sequence (constants from `noisebake
+//!   search-sampler`);
+//!
 //! - [`SamplerTile`]: the baked form (kind `sampler`): `rd_ign_r2`'s structure — every pixel
 //!   runs one sequence per pair (a rank-1 lattice, or Owen-scrambled Sobol for `square`
 //!   pairs), moved by keys of its own — with the keys arranged at build
@@ -28,7 +33,10 @@
 //! Everything is integer arithmetic on 32-bit fractions, so `nb_ign_r2`, `nb_rd2_ign_r2`,
 //! `nb_rd3_ign_r2` and `nb_sobol_owen` in the WGSL library give the same bits.
 
+mod motion;
+mod motion_table;
 mod tile;
+pub use motion::{MOTION_MAX_SPP, MOTION_PAIRS, PairDrift, motion_pairs};
 pub use tile::{MAX_TILE_DIMS, SamplerTile, TILE_GENERATOR, sobol2, tile_point};
 
 use crate::hash::hash2;
@@ -409,6 +417,15 @@ mod tests {
         check("rd_ign_r2<2>", pairs_of(rd_ign_r2::<2>), true);
         check("rd_ign_r2<3>", pairs_of(rd_ign_r2::<3>), true);
         check("rd_ign_r2<4>", pairs_of(rd_ign_r2::<4>), true);
+        // Sample `i` of a frame has its first value in the lattice's column `i` (a stratified
+        // frame, not a dependence): read a sample chosen by a hash so every value is uniform.
+        check(
+            "motion_pairs",
+            pairs_of(|x, y, f| {
+                motion_pairs::<4>(x, y, f, crate::hash::hash3(x, y, f as i32, 1) % 4, 4)
+            }),
+            true,
+        );
         check(
             "sobol_owen",
             pairs_of(|x, y, f| sobol_owen::<4>(x, y, f, 7)),

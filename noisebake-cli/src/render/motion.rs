@@ -9,7 +9,15 @@
 //!   and back;
 //! - [`Motion::Parallax`]: the eye trucks sideways and dollies forward and back: near surfaces
 //!   move more than far ones, the image magnifies and minifies, surfaces disocclude behind
-//!   the boxes and columns.
+//!   the boxes and columns;
+//! - [`Motion::Yaw`]: the camera turns about its eye, left and back (the picture moves
+//!   sideways, faster at the edges, with no parallax);
+//! - [`Motion::Dolly`]: the eye moves along the view, in and back out (the picture grows
+//!   from its centre, near surfaces faster).
+//!
+//! `report render` measures a pan and the parallax with every sampler, and with `--held-out`
+//! also a fast pan, the yaw and the dolly: motions the search behind `motion_pairs` never saw
+//! (it saw pans of up to 4 pixels a frame, in the model of `noisebake_cli::motion_search`).
 
 use super::scene::{Camera, Scene};
 use super::trace::Tracer;
@@ -20,7 +28,8 @@ use rayon::prelude::*;
 /// A camera path over frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Motion {
-    /// The image moves by `velocity` pixels a frame for `sweep` frames, then back.
+    /// The image moves by `velocity` pixels a frame for `sweep` frames, then back (named
+    /// `pan`, or `fast pan` from 4 pixels a frame).
     Pan {
         /// Pixels a frame, `(x, y)`; the picture moves by minus this.
         velocity: [f32; 2],
@@ -38,6 +47,22 @@ pub enum Motion {
         /// Frames each way of the truck.
         sweep: u32,
     },
+    /// The camera turns `turn` radians a frame about the vertical through its eye for `sweep`
+    /// frames, then back.
+    Yaw {
+        /// Radians a frame.
+        turn: f32,
+        /// Frames each way.
+        sweep: u32,
+    },
+    /// The eye moves `speed` (in units of the scene's AO radius) a frame along the view for
+    /// `sweep` frames, then back.
+    Dolly {
+        /// Units of the AO radius a frame.
+        speed: f32,
+        /// Frames each way.
+        sweep: u32,
+    },
 }
 
 /// `0, 1, …, n, n − 1, …, 0, 1, …`: a sweep out and back.
@@ -50,8 +75,11 @@ impl Motion {
     /// The report's name of the motion.
     pub fn name(&self) -> &'static str {
         match self {
+            Motion::Pan { velocity, .. } if velocity[0].hypot(velocity[1]) >= 4.0 => "fast pan",
             Motion::Pan { .. } => "pan",
             Motion::Parallax { .. } => "parallax",
+            Motion::Yaw { .. } => "yaw",
+            Motion::Dolly { .. } => "dolly",
         }
     }
 
@@ -78,6 +106,31 @@ impl Motion {
                     camera: Camera {
                         eye: camera.eye + side + ahead,
                         target: camera.target + side,
+                        fov_y: camera.fov_y,
+                    },
+                    shift: [0.0, 0.0],
+                }
+            }
+            Motion::Yaw { turn, sweep } => {
+                let angle = turn * triangle(frame, sweep);
+                let d = camera.target - camera.eye;
+                let (s, c) = angle.sin_cos();
+                let turned = Vec3::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+                View {
+                    camera: Camera {
+                        target: camera.eye + turned,
+                        ..camera
+                    },
+                    shift: [0.0, 0.0],
+                }
+            }
+            Motion::Dolly { speed, sweep } => {
+                let forward = (camera.target - camera.eye).normalize();
+                let ahead = forward * (speed * scale * triangle(frame, sweep));
+                View {
+                    camera: Camera {
+                        eye: camera.eye + ahead,
+                        target: camera.target + ahead,
                         fov_y: camera.fov_y,
                     },
                     shift: [0.0, 0.0],

@@ -47,21 +47,21 @@ pub const MEASURED: std::ops::Range<u32> = 32..64;
 pub const ONE_FRAME_FRAMES: u32 = 8;
 /// The EMA's blend weight.
 pub const ALPHA: f32 = 0.1;
-/// Samples per pixel per frame measured with the camera moving (with `--full`,
-/// [`FULL_MOVING_SPPS`]).
-pub const MOVING_SPPS: [u32; 1] = [4];
-/// Samples per pixel per frame a `--full` run measures with the camera moving.
-pub const FULL_MOVING_SPPS: [u32; 3] = [1, 4, 16];
+/// Samples per pixel per frame measured with the camera moving.
+pub const MOVING_SPPS: [u32; 3] = [1, 4, 16];
 /// Samplers only a `--full` run measures (superseded by `r2_pairs`, or not a goal's peer).
 pub const FULL_ONLY: [&str; 2] = ["ign_r2 (free)", "OpenQMC lattice bn"];
 
 /// What a run measures. The default fits the report's time on 2 cores; `full` adds 2 and 8
-/// spp, the moving cameras at 1 and 16 spp, the samplers of [`FULL_ONLY`], and the per-pixel
-/// anchor experiment ([`crate::render::anchor`]) on the moving cameras.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// spp, the samplers of [`FULL_ONLY`], every sampler of [`MOVING`] under the moving cameras,
+/// and the per-pixel anchor experiment ([`crate::render::anchor`]) on them.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Options {
     /// Everything.
     pub full: bool,
+    /// Only the samplers whose names contain one of these (all when empty), for a quick look
+    /// at a few; the goal tables need the peers and the tiles.
+    pub only: Vec<String>,
 }
 
 impl Options {
@@ -70,18 +70,26 @@ impl Options {
         if self.full { &FULL_SPPS } else { &SPPS }
     }
 
-    /// Samples per pixel measured with the camera moving.
-    pub fn moving_spps(&self) -> &'static [u32] {
-        if self.full {
-            &FULL_MOVING_SPPS
-        } else {
-            &MOVING_SPPS
-        }
+    /// Whether the run measures the sampler `name`.
+    pub fn measures(&self, name: &str) -> bool {
+        (self.full || !FULL_ONLY.contains(&name))
+            && (self.only.is_empty() || self.only.iter().any(|o| name.contains(o.as_str())))
+    }
+
+    /// Whether the run measures the sampler `name` with the camera moving, and through an
+    /// anchor.
+    pub fn moves(&self, name: &str) -> Option<bool> {
+        MOVING
+            .iter()
+            .find(|m| m.name == name && (self.full || m.default))
+            .map(|m| m.anchor && self.full)
     }
 }
 /// The moving cameras: a sub-pixel pan in a diagonal direction, and a truck with a dolly
-/// (parallax, magnification, disocclusion).
-pub const MOTIONS: [Motion; 2] = [
+/// (parallax, magnification, disocclusion); then three motions held out from the search
+/// behind `motion_pairs` (which saw pans of up to 4 pixels a frame in a model): a fast pan, a
+/// yaw and a dolly.
+pub const MOTIONS: [Motion; 5] = [
     Motion::Pan {
         velocity: [1.6, 0.7],
         sweep: 20,
@@ -91,23 +99,55 @@ pub const MOTIONS: [Motion; 2] = [
         dolly: 0.04,
         sweep: 16,
     },
+    Motion::Pan {
+        velocity: [-4.3, 2.1],
+        sweep: 8,
+    },
+    Motion::Yaw {
+        turn: 0.012,
+        sweep: 16,
+    },
+    Motion::Dolly {
+        speed: 0.05,
+        sweep: 20,
+    },
 ];
 /// A moving camera's reference: samples per pixel of each frame's, in two replicates whose
 /// difference measures its own error ([`Moving`]).
 pub const MOVING_REFERENCE_SPP: u32 = 64;
-/// The samplers measured with the camera moving: the EMA tiles, the peers and white noise;
-/// with `--full`, those flagged are also read through a per-pixel
-/// [`crate::render::anchor::Anchor`] (`… + anchor`).
-pub const MOVING: [(&str, bool); 9] = [
-    ("tile (gauss σ1, ema)", true),
-    ("tile (à-trous 3, ema)", true),
-    ("r2_pairs (free)", true),
-    ("rd_ign_r2 (free)", false),
-    ("Heitz 2019 (table for this spp)", false),
-    ("Heitz 2019 (256-spp table, progressive)", true),
-    ("ZSobol (Ahmed-Wonka 2020)", false),
-    ("sobol_owen (free)", false),
-    ("white", false),
+/// A sampler measured with the camera moving.
+pub struct MovingSampler {
+    /// Its name.
+    pub name: &'static str,
+    /// Measured by a default run (else by `--full` only).
+    pub default: bool,
+    /// With `--full`, also read through a per-pixel [`crate::render::anchor::Anchor`]
+    /// (`… + anchor`).
+    pub anchor: bool,
+}
+
+const fn moving(name: &'static str, default: bool, anchor: bool) -> MovingSampler {
+    MovingSampler {
+        name,
+        default,
+        anchor,
+    }
+}
+
+/// The samplers measured with the camera moving, at every spp of [`MOVING_SPPS`]: by default
+/// the free samplers `motion_pairs` and `r2_pairs`, the Gaussian EMA tile, Heitz's tables and
+/// white noise; with `--full` the others too.
+pub const MOVING: [MovingSampler; 10] = [
+    moving("motion_pairs (free)", true, false),
+    moving("tile (gauss σ1, ema)", true, true),
+    moving("tile (à-trous 3, ema)", false, true),
+    moving("r2_pairs (free)", true, true),
+    moving("rd_ign_r2 (free)", false, false),
+    moving("Heitz 2019 (table for this spp)", true, false),
+    moving("Heitz 2019 (256-spp table, progressive)", true, true),
+    moving("ZSobol (Ahmed-Wonka 2020)", false, false),
+    moving("sobol_owen (free)", false, false),
+    moving("white", true, false),
 ];
 
 /// The reference's samples per pixel, and its replicates.
@@ -176,9 +216,11 @@ pub struct Cell {
     pub margin_percent: f64,
 }
 
-/// The peers a tile must beat: the free per-pair R2 lattice (`r2_pairs`) and `rd_ign_r2`,
+/// The peers a tile must beat: the free sampler built for motion (`motion_pairs`), the free
+/// per-pair R2 lattice (`r2_pairs`) and `rd_ign_r2`,
 /// Heitz et al. 2019's tables, ZSobol and per-pixel Owen-scrambled Sobol.
-pub const PEERS: [&str; 6] = [
+pub const PEERS: [&str; 7] = [
+    "motion_pairs (free)",
     "r2_pairs (free)",
     "rd_ign_r2 (free)",
     "Heitz 2019 (table for this spp)",
@@ -317,6 +359,83 @@ pub fn moving_cells(rows: &[Row]) -> Vec<MovingCell> {
     out
 }
 
+/// One cell of the goal of the sampler built for motion: `motion_pairs` against `r2_pairs` and
+/// against the best table (the EMA tiles and Heitz et al. 2019's two tables) under one
+/// camera (`ema`: still), at one spp, for one integrand and denoiser.
+#[derive(Clone, Debug, Serialize)]
+pub struct MotionCell {
+    /// Samples per pixel per frame.
+    pub spp: u32,
+    /// `ao` or `shadow`.
+    pub integrand: String,
+    /// `gauss σ1` or `à-trous 3`.
+    pub denoiser: String,
+    /// `ema` (the still camera) or a motion's name.
+    pub camera: String,
+    /// `motion_pairs`'s error.
+    pub motion_pairs: f64,
+    /// `r2_pairs`'s error.
+    pub r2_pairs: f64,
+    /// How much less error `motion_pairs` leaves than `r2_pairs`, percent (negative: more).
+    pub vs_r2_pairs: f64,
+    /// The best table under the same camera.
+    pub table: String,
+    /// Its error.
+    pub table_rmse: f64,
+    /// How much less error `motion_pairs` leaves than that table, percent (negative: more).
+    pub vs_table: f64,
+}
+
+/// The tables `motion_pairs` is held against (each where measured).
+pub const TABLES: [&str; 4] = [
+    "tile (gauss σ1, ema)",
+    "tile (à-trous 3, ema)",
+    "Heitz 2019 (table for this spp)",
+    "Heitz 2019 (256-spp table, progressive)",
+];
+
+/// `motion_pairs`'s cells: every spp measured under the EMA, the still camera and each motion.
+pub fn motion_cells(rows: &[Row]) -> Vec<MotionCell> {
+    let mut out = Vec::new();
+    let cameras: Vec<&str> = std::iter::once("ema")
+        .chain(MOTIONS.iter().map(|m| m.name()))
+        .collect();
+    for spp in MOVING_SPPS {
+        for &camera in &cameras {
+            for integrand in ["ao", "shadow"] {
+                for (k, denoiser) in [(1, "gauss σ1"), (3, "à-trous 3")] {
+                    let (Some(m), Some(r)) = (
+                        find(rows, "motion_pairs (free)", spp, integrand, camera),
+                        find(rows, "r2_pairs (free)", spp, integrand, camera),
+                    ) else {
+                        continue;
+                    };
+                    let Some(t) = TABLES
+                        .iter()
+                        .filter_map(|t| find(rows, t, spp, integrand, camera))
+                        .min_by(|a, b| a.rmse[k].total_cmp(&b.rmse[k]))
+                    else {
+                        continue;
+                    };
+                    out.push(MotionCell {
+                        spp,
+                        integrand: integrand.into(),
+                        denoiser: denoiser.into(),
+                        camera: camera.into(),
+                        motion_pairs: m.rmse[k],
+                        r2_pairs: r.rmse[k],
+                        vs_r2_pairs: 100.0 * (1.0 - m.rmse[k] / r.rmse[k]),
+                        table: t.sampler.clone(),
+                        table_rmse: t.rmse[k],
+                        vs_table: 100.0 * (1.0 - m.rmse[k] / t.rmse[k]),
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
 /// The cells as text.
 pub fn describe_cells(cells: &[Cell]) -> Vec<String> {
     let mut out = vec![format!(
@@ -370,6 +489,8 @@ pub struct Report {
     pub motions: Vec<MotionSummary>,
     /// The moving-camera goal, cell by cell ([`moving_cells`]).
     pub moving_cells: Vec<MovingCell>,
+    /// `motion_pairs` against `r2_pairs` and the best table, cell by cell ([`motion_cells`]).
+    pub motion_cells: Vec<MotionCell>,
     /// Every tile's bake, measured beside its estimate.
     pub bakes: Vec<BakeTime>,
     /// Whether this was a `--full` run.
@@ -507,12 +628,18 @@ pub const TILES: [(&str, &str, bool); 4] = [
     ),
 ];
 
-/// Every sampler at `spp` samples per frame, for `frames` frames.
-pub fn samplers(spp: u32, frames: u32, log: &mut dyn FnMut(&str)) -> Result<Vec<Entry>, String> {
+/// Every sampler at `spp` samples per frame, for `frames` frames; of the tiles, only those
+/// `bake` accepts are baked.
+pub fn samplers(
+    spp: u32,
+    frames: u32,
+    bake: &dyn Fn(&str) -> bool,
+    log: &mut dyn FnMut(&str),
+) -> Result<Vec<Entry>, String> {
     let mut out = Vec::new();
     let ema = frames > ONE_FRAME_FRAMES;
     for (name, keys, for_ema) in TILES {
-        if !for_ema || ema {
+        if (!for_ema || ema) && bake(name) {
             out.push(tile(spp, name, keys, log)?);
         }
     }
@@ -520,6 +647,12 @@ pub fn samplers(spp: u32, frames: u32, log: &mut dyn FnMut(&str)) -> Result<Vec<
     out.extend(peers::heitz(spp));
     #[cfg(feature = "peers")]
     out.push(peers::openqmc());
+    out.push(Entry {
+        name: "motion_pairs (free)".into(),
+        family: "free",
+        f: Box::new(move |x, y, f, i| sampler::motion_pairs::<4>(x, y, f, i, spp)),
+        bake: None,
+    });
     out.push(Entry {
         name: "r2_pairs (free)".into(),
         family: "free",
@@ -959,12 +1092,13 @@ RMSE over the pixels that see a surface of filter(estimate - reference), for AO 
   cosine-weighted r = sqrt(u), phi = 2 pi v), an area light's soft shadow (dims 2-3) and one
   diffuse bounce with next-event estimation (dims 0-3); after none / Gaussian sigma 1 / box 5x5 /
   a-trous of 3 passes weighted by the G-buffer. frame: one frame (mean over frames); ema: an EMA
-  with alpha 0.1 over 64 frames, frames 32-63; pan / parallax: the same EMA with the camera
-  moving, every frame traced anew, the history reprojected bilinearly along the motion vectors
-  and reset where a depth / normal test rejects it (pan: the image moves (1.6, 0.7) px a frame
-  out and back; parallax: the eye trucks and dollies, near surfaces move more, surfaces
-  disocclude), against 64-spp references of each frame whose own error is subtracted.
-  `tile (F)`: a 128x128 sampler tile baked for F.";
+  with alpha 0.1 over 64 frames, frames 32-63; pan / parallax / fast pan / yaw / dolly: the
+  same EMA with the camera moving, every frame traced anew, the history reprojected bilinearly
+  along the motion vectors and reset where a depth / normal test rejects it (pan: the image
+  moves (1.6, 0.7) px a frame out and back; parallax: the eye trucks and dollies, near surfaces
+  move more, surfaces disocclude; fast pan (-4.3, 2.1) px a frame, yaw and dolly: motions the
+  search behind motion_pairs never saw), against 64-spp references of each frame whose own
+  error is subtracted. `tile (F)`: a 128x128 sampler tile baked for F.";
 
 /// Runs the report on `scene` and writes `render.json`, `render.png` and the images into `out`.
 pub fn run(
@@ -1032,9 +1166,14 @@ pub fn run(
     log(&header());
     for &spp in options.spps() {
         let ema = EMA_SPPS.contains(&spp);
-        let list = samplers(spp, if ema { FRAMES } else { ONE_FRAME_FRAMES }, log)?;
+        let list = samplers(
+            spp,
+            if ema { FRAMES } else { ONE_FRAME_FRAMES },
+            &|name| options.measures(name),
+            log,
+        )?;
         for e in list {
-            if !options.full && FULL_ONLY.contains(&e.name.as_str()) {
+            if !options.measures(&e.name) {
                 continue;
             }
             bakes.extend(e.bake.clone());
@@ -1046,11 +1185,10 @@ pub fn run(
             if ema {
                 modes.push((e.name.clone(), "ema".into(), m.ema));
             }
-            let moved = MOVING.iter().find(|(n, _)| *n == e.name);
-            if let (true, Some(&(_, anchor))) = (options.moving_spps().contains(&spp), moved) {
+            if let (true, Some(anchor)) = (MOVING_SPPS.contains(&spp), options.moves(&e.name)) {
                 for mv in &moving {
                     for anchored in [false, true] {
-                        if anchored && !(anchor && options.full) {
+                        if anchored && !anchor {
                             continue;
                         }
                         let (errs, r) = measure_moving(scene, &tracer, mv, &*e.f, spp, anchored);
@@ -1120,6 +1258,7 @@ pub fn run(
         seconds: start.elapsed().as_secs_f64(),
         cells: cells(&rows),
         moving_cells: moving_cells(&rows),
+        motion_cells: motion_cells(&rows),
         motions: moving
             .iter()
             .map(|m| MotionSummary {
@@ -1222,7 +1361,7 @@ fn images(
     save("render-reference-shadow.png", &refr[1], 1.0, 0.0)?;
     let atrous = filters.last().expect("the à-trous");
     let mut quiet = |_: &str| {};
-    let list = samplers(4, 1, &mut quiet)?;
+    let list = samplers(4, 1, &|_| true, &mut quiet)?;
     for (tag, e) in [
         ("white", list.iter().find(|e| e.family == "white")),
         ("tile", list.first()),
@@ -1335,6 +1474,25 @@ pub fn markdown(r: &Report, stamp: &super::stamp::Stamp) -> String {
                 c.best,
                 c.best_rmse,
                 c.margin_percent
+            );
+        }
+    }
+    if !r.motion_cells.is_empty() {
+        s.push_str("\n## The sampler built for motion: `motion_pairs` against `r2_pairs` and the best table\n\nEach cell under the EMA, the camera still (`ema`) or moving; the best table is the least error of the EMA tiles and Heitz et al. 2019's two tables under the same camera. Margins: how much less error `motion_pairs` leaves, in percent of the other's; negative means more.\n\n| spp | integrand | denoiser | camera | motion_pairs | r2_pairs | margin | best table | its error | margin |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        for c in &r.motion_cells {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {:.5} | {:.5} | {:+.1} % | {} | {:.5} | {:+.1} % |",
+                c.spp,
+                c.integrand,
+                c.denoiser,
+                c.camera,
+                c.motion_pairs,
+                c.r2_pairs,
+                c.vs_r2_pairs,
+                c.table,
+                c.table_rmse,
+                c.vs_table
             );
         }
     }
