@@ -206,8 +206,11 @@
 //! ```
 //!
 //! A sampler tile is read as `AO_RAYS.sample(x, y, frame, i, d)` (dimension `d` of ray `i`, in
-//! `[0, 1)`), or `sample2` for a pair; on the GPU `nb_sampler_tile(keys, pixel, frame, i, d, spp)`
-//! over `AO_RAYS.keys()` uploaded as any `u16` mask.
+//! `[0, 1)`), or `sample2` for a pair; on the GPU `nb_sampler_tile(keys, pixel, frame, i, d,
+//! spp, sobol_pairs)` over `AO_RAYS.keys()` uploaded as any `u16` mask (an `r16uint` array bound
+//! as `texture_2d_array<u32>`), with `sobol_pairs` the value of `AO_RAYS.sobol_pairs()` (which
+//! pairs run Owen-scrambled Sobol: those whose `sample_space` is `"square"`) passed in a
+//! uniform or written into the shader.
 //!
 //! Unknown keys, wrong types and impossible values are errors that name the key and point at
 //! its line (spec file) or token (macro).

@@ -137,10 +137,18 @@ pub fn run(opts: &Options) -> Result<Report, String> {
     }
     let mut app = App::new();
     app.add_plugins((
-        DefaultPlugins.set(RenderPlugin {
-            synchronous_pipeline_compilation: true,
-            ..default()
-        }),
+        DefaultPlugins
+            .set(RenderPlugin {
+                synchronous_pipeline_compilation: true,
+                ..default()
+            })
+            // Headless: no window, and no winit event loop (which needs a display).
+            .set(bevy::window::WindowPlugin {
+                primary_window: None,
+                exit_condition: bevy::window::ExitCondition::DontExit,
+                ..default()
+            })
+            .disable::<bevy::winit::WinitPlugin>(),
         NoisebakePlugin,
         Material2dPlugin::<FogMaterial>::default(),
     ));

@@ -1,26 +1,11 @@
 //! noisebake in Bevy: the WGSL library as a shader import, baked masks as array textures.
 //!
 //! A Bevy game writes three lines: the plugin, the mask as an image, and the import in its
-//! material's shader.
+//! material's shader. The crate's README, below, has them as code its doc tests compile (and
+//! `noisebake-gpu`'s tests validate its WGSL against the library); the sections after it say
+//! what the plugin does.
 //!
-//! ```no_run
-//! # use bevy::prelude::*;
-//! # static STBN: noise_runtime::Mask3<u8, 64, 64, 32> = noise_runtime::Mask3::new(&[0; 64 * 64 * 32]);
-//! # fn setup(mut images: ResMut<Assets<Image>>) {
-//! App::new().add_plugins((DefaultPlugins, noisebake_bevy::NoisebakePlugin));
-//! let stbn: Handle<Image> = images.add(noisebake_bevy::mask_image(&STBN));
-//! # }
-//! ```
-//!
-//! ```wgsl
-//! #import noisebake::nb_mask_unit
-//! // in a material: `globals` from bevy_pbr::mesh_view_bindings (3D) or
-//! // bevy_sprite::mesh2d_view_bindings (2D); `stbn` bound as texture_2d_array<f32>
-//! let xi = nb_mask_unit(stbn, vec3<i32>(vec2<i32>(in.position.xy), i32(globals.frame_count)), 0u);
-//! ```
-//!
-//! `STBN` is a static baked by `build.rs` (`build_assets::Bake`) or `noise_texture!`; any
-//! `Mask2`, `Mask3` or `Mask4` works ([`BakedMask`]).
+#![doc = include_str!("../README.md")]
 //!
 //! # What the plugin does
 //!
@@ -39,17 +24,21 @@
 //!   with no file: a `D2Array` texture in the mask's format (`r8unorm`, `r16uint`, `r32float`,
 //!   2 and 4 channels; 3 padded to 4), one layer per frame, sampled nearest. A sampler tile
 //!   (`SamplerTile`) becomes its key mask, `r16uint` with a layer per sample dimension, which
-//!   WGSL's `nb_sampler_tile(keys, pixel, frame, i, d, spp, sobol_pairs)` reads.
+//!   WGSL's `nb_sampler_tile(keys, pixel, frame, i, d, spp, sobol_pairs)` reads, `sobol_pairs`
+//!   being the tile's (`SamplerTile::sobol_pairs`, from the spec's `sample_space`).
 //! - **Masks as KTX2 files.** `Bake::ktx2_dir` writes the same textures as KTX2.
-//!   [`NoiseMasks::load`] loads one through Bevy's asset server and `ktx2` loader, with the
+//!   [`NoiseMasks`] (a system parameter: `masks.load(path)`) loads one through Bevy's asset
+//!   server and `ktx2` loader, with the
 //!   settings a mask needs (linear, nearest) and a `D2Array` view also for one layer (see
 //!   [`load`](crate::NoiseMasks) for why Bevy's defaults do not fit).
 //!
 //! # Bind it
 //!
 //! In WGSL a unorm or float mask is `texture_2d_array<f32>`, a 16-bit one
-//! `texture_2d_array<u32>`; both are read with `textureLoad`, never sampled. In an
-//! `AsBindGroup` material that is `#[texture(N, dimension = "2d_array")]` (and
+//! `texture_2d_array<u32>`; both are read with `textureLoad`, never sampled: `nb_mask_unit_u8`,
+//! `nb_mask_unit_u16` and `nb_mask_unit_f32` give each kind's values as the CPU's `get_k`
+//! does (`nb_mask_unit` is the first of a `u8` mask). In an `AsBindGroup` material that is
+//! `#[texture(N, dimension = "2d_array", sample_type = "float", filterable = false)]` (and
 //! `sample_type = "u_int"` for 16-bit masks).
 //!
 //! # Versions

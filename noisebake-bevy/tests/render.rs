@@ -182,10 +182,18 @@ fn render_app() -> Option<App> {
     let started = std::panic::catch_unwind(|| {
         let mut app = App::new();
         app.add_plugins((
-            DefaultPlugins.set(RenderPlugin {
-                synchronous_pipeline_compilation: true,
-                ..default()
-            }),
+            DefaultPlugins
+                .set(RenderPlugin {
+                    synchronous_pipeline_compilation: true,
+                    ..default()
+                })
+                // Headless: no window, and no winit event loop (which needs a display).
+                .set(bevy::window::WindowPlugin {
+                    primary_window: None,
+                    exit_condition: bevy::window::ExitCondition::DontExit,
+                    ..default()
+                })
+                .disable::<bevy::winit::WinitPlugin>(),
             NoisebakePlugin,
             ComputePlugin,
         ));
@@ -425,4 +433,96 @@ fn fog_test() {
         stbn.mean_rmse < white.mean_rmse && stbn.box5_rmse < white.box5_rmse,
         "stbn {stbn:?} vs white {white:?}"
     );
+}
+
+#[path = "../examples/taa3d.rs"]
+#[allow(dead_code)]
+mod taa3d;
+
+/// The 3D example measures in Bevy's own TAA, headless, on a short run: every figure it
+/// reports is finite where its surface is in view, every noise leaves the TAA output off the
+/// reference (the dithered frames are not the blended ones), the structured noises leave less
+/// error than white noise with the camera still, and the reference does not depend on the
+/// runs before it.
+#[test]
+fn the_taa3d_example_measures_every_noise_in_bevys_taa() {
+    on_each_driver(
+        "the_taa3d_example_measures_every_noise_in_bevys_taa",
+        taa3d_test,
+    );
+}
+
+fn taa3d_test() {
+    use taa3d::{CameraPath, Noise, Setting};
+    if render_app().is_none() {
+        return;
+    }
+    let opts = taa3d::Options {
+        size: 64,
+        frames: 8,
+        still_warmup: 16,
+        moving_warmup: 4,
+        settings: vec![
+            Setting {
+                path: CameraPath::Still,
+                hdr: false,
+            },
+            Setting {
+                path: CameraPath::Orbit,
+                hdr: true,
+            },
+        ],
+        noises: vec![Noise::White, Noise::R2, Noise::FastTaa],
+        markdown: None,
+        frames_out: None,
+    };
+    let m = taa3d::measure_all(&opts, true).unwrap();
+    assert_eq!(m.paths.len(), 2);
+    for p in &m.paths {
+        assert_eq!(p.noises.len(), 3);
+        for (noise, f) in &p.noises {
+            for (k, (class, _)) in taa3d_classes().iter().enumerate() {
+                if p.class_pixels[k] > 0.0 {
+                    assert!(
+                        f.rmse[k][0].is_finite() && f.rmse[k][1].is_finite() && f.rmse[k][0] > 0.0,
+                        "{:?} {noise:?} {class}: {:?}",
+                        p.setting,
+                        f.rmse[k]
+                    );
+                }
+            }
+        }
+        assert!(
+            p.class_pixels.iter().all(|&c| c > 0.0),
+            "{:?}: a surface out of view: {:?}",
+            p.setting,
+            p.class_pixels
+        );
+    }
+    let image = taa3d_classes().len() - 1;
+    let still = &m.paths[0].noises;
+    assert!(
+        still[1].1.rmse[image][1] < still[0].1.rmse[image][1],
+        "R2 {:?} against white {:?}",
+        still[1].1.rmse[image],
+        still[0].1.rmse[image]
+    );
+    let markdown = taa3d::markdown(&m, "# stamp\n");
+    assert!(markdown.contains("## Camera `orbit`, `Hdr`"), "{markdown}");
+    assert!(markdown.contains("| pane 30 % |"), "{markdown}");
+
+    let (a, b) = taa3d::reference_twice(
+        Setting {
+            path: CameraPath::Pan,
+            hdr: false,
+        },
+        64,
+        6,
+    )
+    .unwrap();
+    assert_eq!(a, b, "the reference changed after the dithered runs");
+}
+
+fn taa3d_classes() -> Vec<(&'static str, u32)> {
+    taa3d::CLASSES.to_vec()
 }

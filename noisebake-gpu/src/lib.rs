@@ -457,3 +457,9 @@ pub fn words(bytes: &[u8]) -> Vec<u32> {
 pub fn floats(bytes: &[u8]) -> Vec<f32> {
     words(bytes).into_iter().map(f32::from_bits).collect()
 }
+
+/// `docs/gpu.md`'s Rust snippets, compiled as this crate's doc tests (they use its wgpu), so a
+/// snippet that no longer compiles fails the tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/gpu.md")]
+pub struct GpuDocs;
