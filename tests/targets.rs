@@ -3,9 +3,12 @@
 //!   `portable`), on this x86_64 machine: every non-x86 code path runs, and the pinned values
 //!   and bit-for-bit comparisons must hold there too;
 //! - `cargo check` of the runtime for aarch64 Linux and for a `no_std` embedded target
-//!   (thumbv7em-none-eabihf, no allocator, no OS).
+//!   (thumbv7em-none-eabihf, no allocator, no OS);
+//! - `cargo build` for `wasm32-unknown-unknown`, where Bevy and wgpu games ship to the web, of
+//!   the crates such a game compiles: the runtime, the facade (with and without its macro) and
+//!   the Bevy plugin.
 //!
-//! `.ci/run` installs the two targets (`rustup target add`); where they are missing locally the
+//! `.ci/run` installs the three targets (`rustup target add`); where they are missing locally the
 //! cross checks say so and are skipped (in CI, with `CI` set, a missing target fails).
 
 use std::path::PathBuf;
@@ -53,6 +56,32 @@ fn the_runtime_checks_for_aarch64_and_a_no_std_embedded_target() {
         assert!(
             out.status.success(),
             "cargo check for {target} failed:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
+#[test]
+fn a_web_game_builds_for_wasm32() {
+    let target = "wasm32-unknown-unknown";
+    if !installed(target) {
+        eprintln!("SKIPPED: target {target} is not installed (rustup target add {target})");
+        assert!(std::env::var_os("CI").is_none(), "CI must install {target}");
+        return;
+    }
+    for args in [
+        &["-p", "noise-runtime", "-p", "noisebake"][..],
+        &["-p", "noisebake", "--no-default-features"],
+        &["-p", "noisebake-bevy"],
+    ] {
+        let out = cargo()
+            .args(["build", "--release", "--lib", "--target", target])
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "cargo build {args:?} for {target} failed:\n{}",
             String::from_utf8_lossy(&out.stderr)
         );
     }

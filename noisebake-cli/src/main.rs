@@ -149,24 +149,28 @@ enum Command {
         #[command(subcommand)]
         action: CacheAction,
     },
-    /// The speed-against-error report: `fast` (FAST masks against every other mask after the
-    /// filters they are made for), `stochastic` (noise functions), `cnj` (point sets, CNJ Table
-    /// 2), or `all` (the default, these three); `bench` (bake time against size for every
-    /// generator, on one and two threads, beside its estimate, and each FAST case and a
-    /// sampler tile run on to the cap: about 5 minutes on 2 cores);
-    /// `vector` (directions: our vector FAST masks against EA's and the free constructions
-    /// after box 5×5 and Gaussian σ 1 × EMA, cosine hemisphere and sphere); `sampler` (several
-    /// samples per pixel: baked sampler tiles against Heitz et al. 2019's tables with
-    /// `--features peers`, and the free samplers, at 1–16 spp after four filters); `taa` (masks
-    /// under a game's TAA: the history clamped to the 3×3 neighbourhood, dithers at several
-    /// coverages and continuous integrands, a static and a moving camera: about 30 s once its
-    /// bakes are cached, about 5 minutes cold); `render` (every sampler in a ray-traced room,
-    /// or `--scene FILE.obj`: AO, an area light's soft shadow and a bounce at 1–16 spp, after a
-    /// Gaussian, a box and an SVGF-style à-trous, on one frame and under a 64-frame EMA, against
-    /// an 8192-spp reference; about 5 minutes on 2 cores with its tiles baked cold, Heitz's
-    /// tables and OpenQMC with `--features peers`).
+    /// The speed-against-error report. Sections: `all` (the default: `cnj`, `fast` and
+    /// `stochastic`); `fast` (FAST masks against every other mask after the filters they are
+    /// made for); `stochastic` (noise functions: speed against error); `cnj` (point sets, CNJ's
+    /// Table 2); `bench` (bake time against size for every generator, on one and two threads,
+    /// beside its estimate, and each FAST case and a sampler tile run on to the cap: about 5
+    /// minutes on 2 cores); `vector` (directions: vector FAST masks against EA's and the free
+    /// constructions after box 5×5 and Gaussian σ 1 × EMA); `sampler` (sampler tiles against
+    /// Heitz et al. 2019's tables with `--features peers`, and the free samplers, at 1–16 spp
+    /// after four filters, on the half-plane proxy); `taa` (masks under a game's TAA: the
+    /// history clamped to the 3×3 neighbourhood or variance-clipped, blended at 0.1 or at
+    /// Bevy's still 0.015, dithers at several coverages and continuous integrands, a still and
+    /// a moving camera: about 30 s once its bakes are cached, about 7 minutes cold); `render`
+    /// (every sampler in a ray-traced room, or `--scene FILE.obj`: AO, an area light's soft
+    /// shadow and a bounce at 1, 4 and 16 spp, after a Gaussian, a box and an SVGF-style
+    /// à-trous, on one frame, under a 64-frame EMA with the camera still, and with it moving —
+    /// a pan, a truck and dolly with parallax, and a fast pan, a yaw and a dolly that the
+    /// search behind `motion_pairs` never saw — against an 8192-spp reference; about 9 minutes
+    /// on 2 cores with its tiles baked cold; Heitz's tables with `--features peers`; `--full`
+    /// adds 2 and 8 spp, OpenQMC's sampler and `ign_r2`, every sampler under the moving
+    /// cameras and the per-pixel anchor experiment).
     Report {
-        /// Which section: fast, stochastic, cnj, all, bench, vector, sampler, taa or render.
+        /// Which section: all, fast, stochastic, cnj, bench, vector, sampler, taa or render.
         #[arg(default_value = "all")]
         section: String,
         /// Write the stochastic-noise rows as a JSON list (`{"noise", "variant", "ns_per_eval",
@@ -176,8 +180,9 @@ enum Command {
         /// Directory for plots and the FAST / CNJ JSON details.
         #[arg(long, default_value = "target/noisebake-report")]
         out: PathBuf,
-        /// Include the slow full-size cases (FAST 128×128×32 cosine hemisphere; for `bench`,
-        /// void and cluster at 2048²).
+        /// Include the slow cases: for `fast`, FAST 128×128×32 cosine hemisphere; for
+        /// `bench`, void and cluster at 2048²; for `render`, 2 and 8 spp, OpenQMC and `ign_r2`,
+        /// every sampler under the moving cameras and the anchor experiment.
         #[arg(long)]
         full: bool,
         /// Run the FAST paper's own schedule against our optimiser on 64×64×16 cosine
@@ -197,9 +202,9 @@ enum Command {
         /// The goal tables compare the tiles with every peer, so they need a full run.
         #[arg(long, value_delimiter = ',')]
         samplers: Vec<String>,
-        /// For `render` and `taa`: also write the results as a Markdown document stamped with
-        /// the machine, date, commit and command (what `docs/measured/render.md` and
-        /// `taa.md` are).
+        /// For `render`, `taa`, `fast`, `vector` and `cnj`: also write the results as a
+        /// Markdown document stamped with the machine, date, commit and command (what
+        /// `docs/measured/*.md` are).
         #[arg(long)]
         markdown: Option<PathBuf>,
     },
@@ -338,10 +343,20 @@ fn main() -> ExitCode {
                 Err("--samplers is for `report render`".to_string())
             } else if section == "taa" {
                 taa_report(&out, markdown.as_deref())
-            } else if markdown.is_some() {
-                Err("--markdown is for `report render` and `report taa`".to_string())
+            } else if markdown.is_some() && !matches!(section.as_str(), "fast" | "vector" | "cnj") {
+                Err(
+                    "--markdown is for `report render`, `taa`, `fast`, `vector` and `cnj`"
+                        .to_string(),
+                )
             } else {
-                report(&section, json.as_deref(), &out, [full, paper], quick)
+                report(
+                    &section,
+                    json.as_deref(),
+                    &out,
+                    [full, paper],
+                    quick,
+                    markdown.as_deref(),
+                )
             }
         }
     };
@@ -791,8 +806,17 @@ fn gen_cmd(args: &[String]) -> Result<(), String> {
         name
     };
     let s = spec::from_table(&table, Some(&name)).map_err(|e| e.to_string())?;
-    // Everything about the output is checked before minutes of generation.
-    output_kind(&out, &s)?;
+    // Everything about the output is checked before minutes of generation: its kind, and that
+    // the file (for PNG slices, the first slice) can be written there.
+    match output_kind(&out, &s)? {
+        "png" => {
+            let dir = out.parent().unwrap_or(Path::new("."));
+            if let Some(first) = png::slice_names(&stem, &s.storage_dims()).first() {
+                check_output_path(&dir.join(first))?;
+            }
+        }
+        _ => check_output_path(&out)?,
+    }
     if npy_frames.is_some()
         && !(matches!(s.kind, spec::Kind::Sampler(_))
             && out.extension().is_some_and(|e| e == "npy"))
@@ -902,7 +926,7 @@ fn render_report(
         }
         #[cfg(not(feature = "peers"))]
         println!(
-            "  (Heitz et al. 2019's tables and OpenQMC are measured with `--features peers`: cargo run --release -p noisebake-cli --features peers -- report render)"
+            "  (Heitz et al. 2019's tables are measured with `--features peers`, OpenQMC's with `--features peers` and `--full`: cargo run --release -p noisebake-cli --features peers -- report render)"
         );
         let options = render::Options {
             full,
@@ -961,9 +985,16 @@ fn report(
     out: &Path,
     [full, paper]: [bool; 2],
     quick: bool,
+    markdown: Option<&Path>,
 ) -> Result<(), String> {
     let mut log = |s: &str| println!("{s}");
     let mut doc = serde_json::Map::new();
+    // The tables as printed, for `--markdown`.
+    let mut table: Vec<String> = Vec::new();
+    let mut show = |line: String| {
+        println!("{line}");
+        table.push(line);
+    };
     if !matches!(
         section,
         "all" | "fast" | "stochastic" | "cnj" | "bench" | "vector" | "sampler" | "taa"
@@ -992,14 +1023,14 @@ fn report(
     if section == "vector" {
         let r = noisebake_cli::report::vector::run(out, &mut log)?;
         for line in noisebake_cli::report::vector::describe(&r) {
-            println!("{line}");
+            show(line);
         }
         println!(
             "  wrote {} and {}",
             out.join("vector.json").display(),
             out.join("vector.png").display()
         );
-        return Ok(());
+        return write_report_markdown(section, &table, markdown);
     }
     if section == "bench" {
         println!(
@@ -1025,7 +1056,7 @@ fn report(
         use noisebake_cli::report::cnj;
         let rows = cnj::run();
         for line in cnj::describe(&rows) {
-            println!("{line}");
+            show(line);
         }
         doc.insert(
             "cnj".into(),
@@ -1037,7 +1068,7 @@ fn report(
         println!("FAST (filter-adapted masks):");
         let r = fast::run(out, full, paper, &mut log)?;
         for line in fast::describe(&r) {
-            println!("{line}");
+            show(line);
         }
         doc.insert(
             "fast".into(),
@@ -1071,6 +1102,38 @@ fn report(
         write_atomic(path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
         println!("wrote {}", path.display());
     }
+    write_report_markdown(section, &table, markdown)
+}
+
+/// `report fast|vector|cnj --markdown FILE`: the section's table as printed, in a stamped
+/// document (what `docs/measured/fast.md`, `vector.md` and `cnj.md` are).
+fn write_report_markdown(
+    section: &str,
+    table: &[String],
+    path: Option<&Path>,
+) -> Result<(), String> {
+    use noisebake_cli::report::stamp::{Stamp, write};
+    let Some(path) = path else {
+        return Ok(());
+    };
+    let title = match section {
+        "fast" => "FAST masks against every other mask (`noisebake report fast`)",
+        "vector" => "Directions from a pair per pixel (`noisebake report vector`)",
+        _ => "Point sets: curl-noise jittering against the others (`noisebake report cnj`)",
+    };
+    let doc = format!(
+        "{}
+The report's table as it prints it; the JSON beside the run holds every row.
+
+```text
+{}
+```
+",
+        Stamp::now().header(title),
+        table.join("\n")
+    );
+    write(path, &doc)?;
+    println!("  wrote {}", path.display());
     Ok(())
 }
 
@@ -1097,6 +1160,14 @@ fn points_cmd(method: &str, n: usize, seed: u64, out: &Path, analyze: bool) -> R
             "--out {} names a directory, not a file",
             out.display()
         ));
+    }
+    // The file is checked before the work it would hold.
+    check_output_path(out)?;
+    let estimate = noisebake_cli::points::estimate_seconds(m, n);
+    if estimate >= ANNOUNCE_SECONDS {
+        eprintln!(
+            "generating {n} `{method}` points: about {estimate:.0} s on 2 cores (a progress bar follows on a terminal)"
+        );
     }
     let start = Instant::now();
     // A bar once the run has taken 2 s (`cnj-iterative` integrates 64 RK4 steps a point:

@@ -588,3 +588,124 @@ fn gen_bakes_a_fast_mask_for_taa() {
     assert!(!ok);
     assert!(err.contains("is not scalar"), "{err}");
 }
+
+/// An output the file system refuses is reported before the work that would fill it: a name
+/// over 255 bytes, or a directory that does not exist, for `gen` (a bake of minutes) and
+/// `points` (up to minutes), and nothing is left behind.
+#[test]
+fn outputs_are_checked_before_the_work() {
+    let d = tmp("checked");
+    let long = d.join(format!("{}.npy", "n".repeat(300)));
+    let missing = d.join("no/such/dir/m.npy");
+    for out in [&long, &missing] {
+        let started = std::time::Instant::now();
+        // A FAST bake of 64×64×64 takes seconds; refused before it starts, the run ends at once.
+        let (ok, _, err) = noisebake(&[
+            "gen",
+            "--kind",
+            "fast",
+            "--dims",
+            "64x64x64",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(!ok, "gen wrote {}", out.display());
+        assert!(
+            err.contains("cannot be written") || err.contains("does not exist"),
+            "{err}"
+        );
+        assert!(
+            !err.contains("generating"),
+            "gen generated before checking its output: {err}"
+        );
+        assert!(started.elapsed() < std::time::Duration::from_secs(2));
+        let csv = out.with_extension("csv");
+        let (ok, _, err) = noisebake(&["points", "--n", "100", "--out", csv.to_str().unwrap()]);
+        assert!(
+            !ok && (err.contains("cannot be written") || err.contains("does not exist")),
+            "{err}"
+        );
+    }
+    assert_eq!(
+        std::fs::read_dir(&d).unwrap().count(),
+        0,
+        "something was left behind"
+    );
+}
+
+/// A long `points` run says so before it starts (a bar shows only on a terminal).
+#[test]
+fn long_point_runs_announce_themselves() {
+    let d = tmp("announce");
+    let out = d.join("p.csv");
+    let (ok, _, err) = noisebake(&[
+        "points",
+        "--method",
+        "poisson-disk",
+        "--n",
+        "400000",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    assert!(
+        err.contains("generating 400000 `poisson-disk` points: about"),
+        "{err}"
+    );
+    let (ok, _, err) = noisebake(&["points", "--n", "1000", "--out", out.to_str().unwrap()]);
+    assert!(ok && !err.contains("generating"), "{err}");
+}
+
+/// The help says what the code does: every section `report` accepts is named in its help, and
+/// every flag of `report` is described there.
+#[test]
+fn report_help_names_every_section_and_flag() {
+    let (ok, help, err) = noisebake(&["report", "--help"]);
+    assert!(ok, "{err}");
+    for section in [
+        "all",
+        "fast",
+        "stochastic",
+        "cnj",
+        "bench",
+        "vector",
+        "sampler",
+        "taa",
+        "render",
+    ] {
+        assert!(
+            help.contains(&format!("`{section}`")),
+            "report --help lacks `{section}`:\n{help}"
+        );
+        if section == "all" {
+            continue;
+        }
+        // And the code accepts it (an unknown one is refused with the list).
+        let (_, _, err) = noisebake(&["report", "nonesuch"]);
+        assert!(err.contains(section), "{err}");
+    }
+    for flag in [
+        "--json",
+        "--out",
+        "--full",
+        "--paper",
+        "--quick",
+        "--scene",
+        "--samplers",
+        "--markdown",
+    ] {
+        assert!(help.contains(flag), "report --help lacks {flag}");
+    }
+    // The moving cameras and what `--full` adds are in the help.
+    for phrase in [
+        "moving",
+        "--full",
+        "a fast pan, a yaw and a dolly",
+        "OpenQMC",
+    ] {
+        assert!(
+            help.contains(phrase),
+            "report --help lacks {phrase:?}:\n{help}"
+        );
+    }
+}

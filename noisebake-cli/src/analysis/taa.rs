@@ -68,7 +68,13 @@ pub fn taa_rmse(
     let n = w * h;
     assert_eq!(values.len(), n * t, "values are w × h × t");
     let est: Vec<f64> = values.iter().map(|&s| phi(s)).collect();
-    let total = (4 * t).max(64).div_ceil(t) * t;
+    // Long enough for the first frame's weight in the history to fall below 0.03 %: four
+    // loops of the mask, or 8 / α frames for a slow blend (Bevy's 0.015 for a still pixel).
+    let total = (4 * t)
+        .max(64)
+        .max((8.0 / taa.alpha).ceil() as usize)
+        .div_ceil(t)
+        * t;
     let mut hist = est[..n].to_vec();
     let mut next = vec![0.0; n];
     let mut measured: Vec<Vec<f64>> = Vec::with_capacity(t);

@@ -23,6 +23,9 @@ pub const SIGMA: f64 = 1.3435;
 pub const ALPHA: f64 = 0.1;
 /// Whole pixels per frame of the moving camera.
 pub const MOTION: [i32; 2] = [3, 1];
+/// Bevy's blend weight for a pixel that has been still for a few frames (its TAA lowers the
+/// weight of the new frame from 0.1 towards this as its confidence in the history grows).
+pub const BEVY_STILL_ALPHA: f64 = 0.015;
 /// Other motions the 25 % dither is measured at, with and without the clamp: a mask baked for
 /// [`MOTION`] met off the motion it was made for.
 pub const OTHER_MOTIONS: [[i32; 2]; 5] = [[-3, 1], [1, 2], [1, 0], [0, -3], [6, 2]];
@@ -77,6 +80,8 @@ pub struct Cell {
     pub integrand: &'static str,
     /// Clamp name.
     pub clip: String,
+    /// The history's blend weight.
+    pub alpha: f64,
     /// Camera motion in pixels per frame.
     pub motion: [i32; 2],
     /// RMSE after TAA and the spatial filter.
@@ -105,11 +110,27 @@ pub struct Row {
 pub const SWEEP: [f64; 10] = [0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5];
 
 impl Row {
-    /// The cell of `integrand` under `clip` with `motion`.
+    /// The cell of `integrand` under `clip` with `motion`, blended at [`ALPHA`].
     pub fn rmse(&self, integrand: &str, clip: Clip, motion: [i32; 2]) -> Option<f64> {
+        self.rmse_at(integrand, clip, motion, ALPHA)
+    }
+
+    /// The cell of `integrand` under `clip` with `motion`, blended at `alpha`.
+    pub fn rmse_at(
+        &self,
+        integrand: &str,
+        clip: Clip,
+        motion: [i32; 2],
+        alpha: f64,
+    ) -> Option<f64> {
         self.cells
             .iter()
-            .find(|c| c.integrand == integrand && c.clip == clip.name() && c.motion == motion)
+            .find(|c| {
+                c.integrand == integrand
+                    && c.clip == clip.name()
+                    && c.motion == motion
+                    && c.alpha == alpha
+            })
             .map(|c| c.rmse)
     }
 }
@@ -121,20 +142,25 @@ pub fn measure(mask: &str, values: &[f64]) -> Row {
     for ig in &INTEGRANDS {
         for clip in CLIPS {
             for motion in [[0, 0], MOTION] {
-                jobs.push((ig, clip, motion));
+                jobs.push((ig, clip, motion, ALPHA));
             }
         }
     }
     for motion in OTHER_MOTIONS {
         for clip in [Clip::None, Clip::MinMax] {
-            jobs.push((&INTEGRANDS[1], clip, motion));
+            jobs.push((&INTEGRANDS[1], clip, motion, ALPHA));
         }
+    }
+    // Bevy's TAA with a still camera: variance clipping and its slow blend.
+    for ig in &INTEGRANDS[..3] {
+        jobs.push((ig, Clip::Variance(1.0), [0, 0], BEVY_STILL_ALPHA));
     }
     let cells = jobs
         .into_par_iter()
-        .map(|(ig, clip, motion)| Cell {
+        .map(|(ig, clip, motion, alpha)| Cell {
             integrand: ig.name,
             clip: clip.name(),
+            alpha,
             motion,
             rmse: taa_rmse(
                 values,
@@ -142,7 +168,7 @@ pub fn measure(mask: &str, values: &[f64]) -> Row {
                 &ig.phi,
                 ig.truth,
                 Taa {
-                    alpha: ALPHA,
+                    alpha,
                     clip,
                     motion,
                 },
@@ -228,6 +254,11 @@ pub fn run(out: &Path, log: &mut dyn FnMut(&str)) -> Result<Report, String> {
             "FAST (ours, for the plain EMA)",
             "{ kind = \"ema\", alpha = 0.1 }",
         ),
+        (
+            "FAST_TAA_BEVY",
+            "FAST (ours, for TAA at α 0.015)",
+            "{ kind = \"taa\", alpha = 0.015 }",
+        ),
     ] {
         let v = baked(name, "fast", &fast_keys(temporal), log)?;
         rows.push(measure(label, &v));
@@ -275,8 +306,11 @@ pub fn plot(r: &Report, path: &Path) -> Result<(), String> {
     line_plot(path, &series, &labels, true).map(|_| ())
 }
 
-/// The columns printed: `(heading, integrand, clamp, motion)`.
-pub fn columns() -> Vec<(String, &'static str, Clip, [i32; 2])> {
+/// A column printed: heading, integrand, clamp, motion, blend weight.
+pub type Column = (String, &'static str, Clip, [i32; 2], f64);
+
+/// The columns printed.
+pub fn columns() -> Vec<Column> {
     let mut c = Vec::new();
     for ig in [
         "dither 0.25",
@@ -287,17 +321,29 @@ pub fn columns() -> Vec<(String, &'static str, Clip, [i32; 2])> {
     ] {
         for clip in [Clip::None, Clip::MinMax] {
             let short = if clip == Clip::None { "" } else { " clamp" };
-            c.push((format!("{ig}{short}"), ig, clip, [0, 0]));
+            c.push((format!("{ig}{short}"), ig, clip, [0, 0], ALPHA));
         }
     }
+    let var = Clip::Variance(1.0);
+    c.push(("d0.25 var".into(), "dither 0.25", var, [0, 0], ALPHA));
     c.push((
-        "d0.25 var".into(),
+        "d0.25 moving".into(),
         "dither 0.25",
-        Clip::Variance(1.0),
-        [0, 0],
+        Clip::None,
+        MOTION,
+        ALPHA,
     ));
-    c.push(("d0.25 moving".into(), "dither 0.25", Clip::None, MOTION));
-    c.push(("d0.25 mv clamp".into(), "dither 0.25", Clip::MinMax, MOTION));
+    c.push((
+        "d0.25 mv clamp".into(),
+        "dither 0.25",
+        Clip::MinMax,
+        MOTION,
+        ALPHA,
+    ));
+    for ig in ["dither 0.25", "dither 0.10", "dither 0.50"] {
+        let head = format!("{} bevy", ig.replace("dither ", "d"));
+        c.push((head, ig, var, [0, 0], BEVY_STILL_ALPHA));
+    }
     c
 }
 
@@ -312,8 +358,11 @@ pub fn describe(r: &Report) -> Vec<String> {
     let mut out = vec![head];
     for row in &r.rows {
         let mut line = format!("  {:<36}", row.mask);
-        for (_, ig, clip, m) in &cols {
-            line += &format!(" {:>9.5}", row.rmse(ig, *clip, *m).unwrap_or(f64::NAN));
+        for (_, ig, clip, m, alpha) in &cols {
+            line += &format!(
+                " {:>9.5}",
+                row.rmse_at(ig, *clip, *m, *alpha).unwrap_or(f64::NAN)
+            );
         }
         line += &format!(" {:>9} {:>9}", row.open_windows_0_2, row.open_windows_0_25);
         out.push(line);
@@ -347,7 +396,8 @@ RMSE after TAA (α 0.1, the history reprojected, clamped, blended) and a Gaussia
   (d0.25: a binary dither [s < 0.25] at 25 % coverage; soft 0.25: a ramp 0.2 wide around 0.25;
   ramp: s itself), without and with the 3x3 min/max clamp; `var`: variance clipping μ ± σ;
   `moving`: the camera moves (3, 1) pixels per frame and the history is reprojected (and, in the
-  second table, at five other motions). open 0.2 /
+  second table, at five other motions); `bevy`: Bevy's TAA with a still camera, variance
+  clipping μ ± σ and a blend of 0.015 (the `taa3d` example measures the same in Bevy). open 0.2 /
   open .25: 3x3 windows (of 1 048 576) lacking a value below 0.2 (0.25) or one at or above 0.8
   (0.75), where the clamp acts on some dither in that range.";
 
