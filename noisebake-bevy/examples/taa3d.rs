@@ -14,12 +14,16 @@
 //! gradient noise (`nb_ign_frame`), the R2 grid (`nb_r2_frame`), or one of three 64×64×64
 //! masks that `noise.toml` declares and `build.rs` bakes (the `taa3d-masks` crate beside this
 //! file, as a game would): STBN, a FAST mask for an EMA, and the FAST mask for TAA. The camera
-//! (`Camera3d`, `Hdr`, `Msaa::Off`, `TemporalAntiAliasing` with its depth and motion-vector
+//! (`Camera3d`, `Msaa::Off`, `TemporalAntiAliasing` with its depth and motion-vector
 //! prepasses, the projection jittered each frame) is still or follows a path: `pan` (a yaw out
 //! and back), `orbit` (around the scene: parallax and disocclusion) or `dolly` (in and out).
+//! It renders in Bevy's default low dynamic range, or with `Hdr` (`H` in the window; the paths
+//! `still-hdr`, `pan-hdr`, … when measuring): there Bevy's TAA blends in a reversible
+//! tonemapped space, `c / (1 + max(c))`, and a dither converges to the tonemapped mean of its
+//! two colours rather than to their mean, whatever the noise.
 //!
 //! **In a window** (the default): `N` cycles the noise, `C` the camera path, `R` toggles the
-//! reference (the surfaces alpha-blended, the fog marched finely).
+//! reference (the surfaces alpha-blended, the fog marched finely), `H` toggles `Hdr`.
 //!
 //! **Measured** (`--measure`): headless at `--size` (256) pixels on whatever Vulkan device
 //! Bevy finds (lavapipe on a machine without a GPU). For each path and noise, the TAA output
@@ -32,7 +36,9 @@
 //! frame-to-frame change of the Gaussian-filtered error. `--markdown FILE` writes them as a
 //! stamped document; `--frames-out DIR` writes `DIR/<path>/<noise>.npy` and
 //! `DIR/<path>/reference.npy`, float32 `(frames, H, W, 3)`, the linear TAA output of every
-//! frame. `--paths` and `--noises` (comma-separated) measure a subset.
+//! frame. `--paths` (`still`, `pan`, `orbit`, `dolly`, each also with `-hdr`; by default the
+//! four in low dynamic range and `still-hdr`, `pan-hdr`) and `--noises` (comma-separated)
+//! measure a subset; `--size`, `--frames` and `--warmup` change the run.
 //!
 //! **The reference's own error.** Bevy's prepasses skip alpha-blended meshes: in the
 //! reference the blended surfaces write no depth or motion vectors, so TAA reprojects their
@@ -684,6 +690,9 @@ pub struct PathResult {
     pub class_pixels: Vec<f64>,
 }
 
+/// A run's frames and its name (a noise's, or `reference`).
+pub type Named = (String, Vec<Frame>);
+
 /// The measurement.
 pub struct Measurement {
     pub adapter: String,
@@ -691,8 +700,8 @@ pub struct Measurement {
     pub options: Options,
     pub paths: Vec<PathResult>,
     pub seconds: f64,
-    /// The reference frames and each noise's, per path, when kept (`--frames-out`, tests).
-    pub frames: Vec<(Setting, Vec<(String, Vec<Frame>)>)>,
+    /// The reference frames and each noise's, per path, when kept (tests).
+    pub frames: Vec<(Setting, Vec<Named>)>,
 }
 
 /// Drives a headless app: renders frames and reads each back.
@@ -980,7 +989,7 @@ pub fn markdown(m: &Measurement, header: &str) -> String {
     );
     let _ = writeln!(
         s,
-        "Bevy's TAA (`TemporalAntiAliasing` on a `Camera3d` with `Hdr` and `Msaa::Off`: jittered projection, depth and motion-vector prepasses, Catmull-Rom history, variance clipping in YCoCg, a blend of 0.1 that falls to 0.015 while a pixel is still) over {} frames after a warm-up of {} frames (still camera) or {} (moving). RMSE of the linear TAA output against the reference (the same scene, TAA and path, every surface alpha-blended at its coverage, the fog marched in 128 steps) over frames {}–{}, raw / after a Gaussian of σ 1 px, over the pixels that show each surface; flicker: the RMS of the frame-to-frame change of the Gaussian-filtered error. Lower is better.\n",
+        "Bevy's TAA (`TemporalAntiAliasing` on a `Camera3d` with `Msaa::Off`: jittered projection, depth and motion-vector prepasses, Catmull-Rom history, variance clipping in YCoCg, a blend of 0.1 that falls to 0.015 while a pixel is still), in Bevy's default low dynamic range (an 8-bit view target) and, for the cameras marked so, with `Hdr` (a float target; TAA then blends in a reversible tonemapped space), over {} frames after a warm-up of {} frames (still camera) or {} (moving). RMSE of the linear TAA output against the reference (the same scene, TAA and path, every surface alpha-blended at its coverage, the fog marched in 128 steps) over frames {}–{}, raw / after a Gaussian of σ 1 px, over the pixels that show each surface; flicker: the RMS of the frame-to-frame change of the Gaussian-filtered error. Lower is better.\n",
         o.frames,
         o.still_warmup,
         o.moving_warmup,
@@ -1090,13 +1099,14 @@ struct Interactive {
     noise: usize,
     path: usize,
     reference: bool,
+    hdr: bool,
     frame: i64,
 }
 
 fn interact(
     keys: Res<ButtonInput<KeyCode>>,
     mut state: ResMut<Interactive>,
-    mut taa: Query<(&mut Transform, &mut TemporalAntiAliasing)>,
+    mut taa: Query<(Entity, &mut Transform, &mut TemporalAntiAliasing)>,
     mut commands: Commands,
 ) {
     let mut changed = false;
@@ -1112,11 +1122,20 @@ fn interact(
         state.reference = !state.reference;
         changed = true;
     }
+    if keys.just_pressed(KeyCode::KeyH) {
+        state.hdr = !state.hdr;
+        changed = true;
+    }
     state.frame += 1;
     let path = CameraPath::ALL[state.path];
-    for (mut t, mut a) in &mut taa {
+    for (camera, mut t, mut a) in &mut taa {
         *t = path.transform(state.frame);
         a.reset |= changed;
+        if state.hdr {
+            commands.entity(camera).insert(Hdr);
+        } else {
+            commands.entity(camera).remove::<Hdr>();
+        }
     }
     if changed {
         let mode = if state.reference {
@@ -1149,7 +1168,7 @@ fn main() {
         }
     };
     if !measure {
-        println!("N: next noise, C: next camera path, R: the reference (alpha-blended)");
+        println!("N: next noise, C: next camera path, R: the reference (alpha-blended), H: Hdr");
         let mut app = app(false);
         build_scene(app.world_mut(), None);
         app.init_resource::<Interactive>()

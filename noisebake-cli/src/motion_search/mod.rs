@@ -94,7 +94,7 @@ impl Setup {
     /// [`conditions`].
     pub fn new() -> Setup {
         Setup {
-            spectra: Family::ALL.map(|f| Spectrum::of(f, INTEGRANDS, 0x5eed_0f_5a3d)),
+            spectra: Family::ALL.map(|f| Spectrum::of(f, INTEGRANDS, 0x005e_ed0f_5a3d)),
             conditions: conditions(),
         }
     }

@@ -2,9 +2,10 @@
 //! pixel and the frame, after a denoiser and an EMA whose history follows a pan — in closed
 //! form, so a search can score a candidate in a millisecond.
 //!
-//! A pair's frame at pixel `n` in frame `f` is the set `Q` moved by `s(n, f) = n_x·a + n_y·b
-//! + f·g (mod 1)`. For an integrand `h` of the torus its error is `E(s) = (1/N)·Σ_q h(q + s) −
-//! ∫h`, whose Fourier coefficients are `ĥ(k)·Q̂(k)` (`Q̂(k)` the mean of `e^{2πik·q}`), so
+//! A pair's frame at pixel `n` in frame `f` is the set `Q` moved by the shift
+//! `s(n, f) = n_x·a + n_y·b + f·g (mod 1)`. For an integrand `h` of the torus its error is
+//! `E(s) = (1/N)·Σ_q h(q + s) − ∫h`, whose Fourier coefficients are `ĥ(k)·Q̂(k)` (`Q̂(k)` the
+//! mean of `e^{2πik·q}`), so
 //! frequency `k` of the integrand becomes, on the screen, the wave `e^{2πi(ω_s·n + ω_t·f)}`
 //! with `ω_s = (k·a, k·b)` and `ω_t = k·g` (mod 1). Every operation after the renderer is
 //! linear and shift-invariant, so each wave comes out scaled by a response and the expected

@@ -22,9 +22,14 @@ pub struct Stamp {
 
 impl Stamp {
     /// This machine, today, this checkout and this process's command line, the program named
-    /// `noisebake`.
+    /// as the command that reproduces it from a checkout: `cargo run --release -p
+    /// noisebake-cli --`, with `--features peers` when this build has the peers.
     pub fn now() -> Stamp {
-        Stamp::now_as("noisebake")
+        Stamp::now_as(if cfg!(feature = "peers") {
+            "cargo run --release -p noisebake-cli --features peers --"
+        } else {
+            "cargo run --release -p noisebake-cli --"
+        })
     }
 
     /// [`Stamp::now`] with the program named `program` (an example's `cargo run` line).
