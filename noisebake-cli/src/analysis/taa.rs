@@ -68,11 +68,12 @@ pub fn taa_rmse(
     let n = w * h;
     assert_eq!(values.len(), n * t, "values are w × h × t");
     let est: Vec<f64> = values.iter().map(|&s| phi(s)).collect();
-    // Long enough for the first frame's weight in the history to fall below 0.03 %: four
-    // loops of the mask, or 8 / α frames for a slow blend (Bevy's 0.015 for a still pixel).
+    // Four loops of the mask, and for a slow blend (Bevy's 0.015 for a still pixel) 6 / α
+    // frames, so the first frame's weight in the history is below 0.3 % when the measured loop
+    // starts.
     let total = (4 * t)
         .max(64)
-        .max((8.0 / taa.alpha).ceil() as usize)
+        .max((6.0 / taa.alpha).ceil() as usize)
         .div_ceil(t)
         * t;
     let mut hist = est[..n].to_vec();
