@@ -81,7 +81,7 @@ fn every_wgsl_snippet_in_the_docs_validates_against_the_library() {
         }
     }
     assert!(
-        checked >= 5,
+        checked >= 3,
         "only {checked} WGSL snippets found: the docs lost theirs?"
     );
 }
