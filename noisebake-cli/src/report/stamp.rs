@@ -13,8 +13,8 @@ pub struct Stamp {
     pub threads: usize,
     /// The date, `YYYY-MM-DD` (UTC).
     pub date: String,
-    /// The commit (`git rev-parse --short HEAD`, `+changes` when the tree differs from it), or
-    /// `unknown` outside a checkout.
+    /// The commit (`git rev-parse --short HEAD`, `+changes` when the tree differs from it
+    /// outside `docs/measured/`), or `unknown` outside a checkout.
     pub commit: String,
     /// The command line, as run.
     pub command: String,
@@ -53,8 +53,18 @@ impl Stamp {
         };
         let commit = match git(&["rev-parse", "--short", "HEAD"]) {
             Some(c) => {
-                let dirty = git(&["status", "--porcelain", "--untracked-files=no"])
-                    .is_some_and(|s| !s.is_empty());
+                // The documents the reports write do not change what writes them: a tree whose
+                // only changes are under docs/measured/ (the other reports of the same run) is
+                // the commit's.
+                let dirty = git(&[
+                    "status",
+                    "--porcelain",
+                    "--untracked-files=no",
+                    "--",
+                    ".",
+                    ":(exclude)docs/measured",
+                ])
+                .is_some_and(|s| !s.is_empty());
                 if dirty { format!("{c}+changes") } else { c }
             }
             None => "unknown".into(),
