@@ -27,13 +27,18 @@
 //!
 //! **Measured** (`--measure`): headless at `--size` (256) pixels on whatever Vulkan device
 //! Bevy finds (lavapipe on a machine without a GPU). For each path and noise, the TAA output
-//! of `--frames` (64) frames is read back after `--warmup` frames on the same path (256 for
-//! the still camera, whose history Bevy blends at 1.5 % a frame, and 32 for the moving ones),
+//! of `--frames` (64) frames is read back after `--warmup` frames on the same path (224 for
+//! the still camera, whose history Bevy blends at as little as 1.5 % a frame with `Hdr`, and
+//! 24 for the moving ones),
 //! and compared with the reference: the same scene, TAA and path, with every surface
 //! alpha-blended at its coverage and the fog marched in 128 steps. Errors are RMSE over frames
 //! 32–63 (of 64), raw and after a Gaussian of σ 1 px, per surface (a class run maps which
-//! surface each pixel sees) and over the image, and the flicker: the RMS of the
-//! frame-to-frame change of the Gaussian-filtered error. `--markdown FILE` writes them as a
+//! surface each pixel sees) and over the image; the flicker: the RMS of the frame-to-frame
+//! change of the Gaussian-filtered error; and the static part: the RMS over pixels of that
+//! error's mean over the measured frames, a bias per pixel. In low dynamic range Bevy keeps
+//! the history in the 8-bit sRGB view-target format, which rounds every blended value and
+//! saturates the confidence it keeps in alpha (a still pixel then blends at 1/11, not 0.015);
+//! the static part shows what that rounding leaves. `--markdown FILE` writes them as a
 //! stamped document; `--frames-out DIR` writes `DIR/<path>/<noise>.npy` and
 //! `DIR/<path>/reference.npy`, float32 `(frames, H, W, 3)`, the linear TAA output of every
 //! frame. `--paths` (`still`, `pan`, `orbit`, `dolly`, each also with `-hdr`; by default the
@@ -123,7 +128,7 @@ impl Noise {
             Noise::FastEma => "FAST for Gaussian σ 1 × EMA α 0.1",
             Noise::FastTaa => "FAST for TAA (`kind = \"taa\"`, α 0.1, coverage 0.2)",
             Noise::FastBevy => {
-                "FAST for TAA at Bevy's still blend (`kind = \"taa\"`, α 0.015, coverage 0.2)"
+                "FAST for TAA at Bevy's still blend with `Hdr` (`kind = \"taa\"`, α 0.015, coverage 0.2)"
             }
         }
     }
@@ -987,7 +992,7 @@ pub fn markdown(m: &Measurement, header: &str) -> String {
     );
     let _ = writeln!(
         s,
-        "Bevy's TAA (`TemporalAntiAliasing` on a `Camera3d` with `Msaa::Off`: jittered projection, depth and motion-vector prepasses, Catmull-Rom history, variance clipping in YCoCg, a blend of 0.1 that falls to 0.015 while a pixel is still), in Bevy's default low dynamic range (an 8-bit view target) and, for the cameras marked so, with `Hdr` (a float target; TAA then blends in a reversible tonemapped space), over {} frames after a warm-up of {} frames (still camera) or {} (moving). RMSE of the linear TAA output against the reference (the same scene, TAA and path, every surface alpha-blended at its coverage, the fog marched in 128 steps) over frames {}–{}, raw / after a Gaussian of σ 1 px, over the pixels that show each surface; flicker: the RMS of the frame-to-frame change of the Gaussian-filtered error. Lower is better.\n",
+        "Bevy's TAA (`TemporalAntiAliasing` on a `Camera3d` with `Msaa::Off`: jittered projection, depth and motion-vector prepasses, Catmull-Rom history, variance clipping in YCoCg, a blend of 0.1 that falls towards 0.015 as a still pixel's confidence grows), in Bevy's default low dynamic range and, for the cameras marked so, with `Hdr`. In low dynamic range the history is an 8-bit sRGB texture, the view target's format: every blended value is rounded to 8 bits, and the confidence, kept in its alpha channel, saturates at 1, so a still pixel blends at 1/11 every frame rather than 0.015. With `Hdr` the history is 16-bit float, a still pixel's blend does fall to 0.015, and TAA blends in a reversible tonemapped space. over {} frames after a warm-up of {} frames (still camera) or {} (moving). RMSE of the linear TAA output against the reference (the same scene, TAA and path, every surface alpha-blended at its coverage, the fog marched in 128 steps) over frames {}–{}, raw / after a Gaussian of σ 1 px, over the pixels that show each surface; flicker: the RMS of the frame-to-frame change of the Gaussian-filtered error; static part: the RMS over pixels of the Gaussian-filtered error's mean over the measured frames, the part that stays put (a bias per pixel, which further accumulation does not remove, against what a noise's arrangement can lower). Lower is better.\n",
         o.frames,
         o.still_warmup,
         o.moving_warmup,
@@ -1042,6 +1047,16 @@ pub fn markdown(m: &Measurement, header: &str) -> String {
             let _ = write!(s, " {:.5} |", f.flicker[CLASSES.len() - 1]);
         }
         s.push_str(" |\n");
+        for (k, (class, _)) in CLASSES.iter().enumerate() {
+            if k != 0 && k != CLASSES.len() - 1 {
+                continue;
+            }
+            let _ = write!(s, "| static part ({class}) | |");
+            for (_, f) in &p.noises {
+                let _ = write!(s, " {:.5} |", f.static_part[k]);
+            }
+            s.push_str(" |\n");
+        }
     }
     s
 }

@@ -159,7 +159,7 @@ enum Command {
     /// Heitz et al. 2019's tables with `--features peers`, and the free samplers, at 1–16 spp
     /// after four filters, on the half-plane proxy); `taa` (masks under a game's TAA: the
     /// history clamped to the 3×3 neighbourhood or variance-clipped, blended at 0.1 or at
-    /// Bevy's still 0.015, dithers at several coverages and continuous integrands, a still and
+    /// Bevy's still 1/11 (0.015 with `Hdr`), dithers at several coverages and continuous integrands, a still and
     /// a moving camera: about 30 s once its bakes are cached, about 7 minutes cold); `render`
     /// (every sampler in a ray-traced room, or `--scene FILE.obj`: AO, an area light's soft
     /// shadow and a bounce at 1, 4 and 16 spp, after a Gaussian, a box and an SVGF-style

@@ -1,6 +1,9 @@
 //! The figures of one run against its reference: RMSE over the measured frames, raw and after a
-//! Gaussian of σ 1 px (what the eye sees), per surface class and over the whole image, and the
-//! flicker (the RMS of the frame-to-frame change of the Gaussian-filtered error).
+//! Gaussian of σ 1 px (what the eye sees), per surface class and over the whole image; the
+//! flicker (the RMS of the frame-to-frame change of the Gaussian-filtered error); and the static
+//! part (the RMS over pixels of the Gaussian-filtered error's mean over the measured frames):
+//! what stays put, a bias per pixel that no longer averaging removes, against what a noise's
+//! stratification can lower.
 
 /// One frame: linear RGB, `w × h` pixels, row-major, top row first.
 pub type Frame = Vec<[f32; 3]>;
@@ -66,6 +69,9 @@ pub struct Figures {
     /// Per class: the flicker, RMS of the change of the Gaussian-filtered error from one
     /// measured frame to the next.
     pub flicker: Vec<f64>,
+    /// Per class: the static part, RMS over the class's pixels (in the last measured frame) of
+    /// the Gaussian-filtered error's mean over the measured frames.
+    pub static_part: Vec<f64>,
 }
 
 /// The figures of `frames` against `reference`, over frames `measured` (the class map of each
@@ -82,6 +88,9 @@ pub fn figures(
     let (mut raw, mut filtered, mut flick) = (vec![0.0f64; n], vec![0.0f64; n], vec![0.0f64; n]);
     let (mut count, mut flick_count) = (vec![0usize; n], vec![0usize; n]);
     let mut previous: Option<Frame> = None;
+    let mut mean = vec![[0.0f64; 3]; w * h];
+    let frames_measured = measured.len();
+    let last = measured.end.saturating_sub(1);
     for f in measured {
         let err: Frame = frames[f]
             .iter()
@@ -89,6 +98,11 @@ pub fn figures(
             .map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2]])
             .collect();
         let g = gauss(&err, w, h);
+        for (m, p) in mean.iter_mut().zip(&g) {
+            for c in 0..3 {
+                m[c] += f64::from(p[c]) / frames_measured as f64;
+            }
+        }
         for (i, class) in class_maps[f].iter().enumerate() {
             for (k, &(_, code)) in CLASSES.iter().enumerate() {
                 if code != 0 && code != *class {
@@ -116,7 +130,20 @@ pub fn figures(
             (s / n as f64).sqrt()
         }
     };
+    let (mut stat, mut stat_count) = (vec![0.0f64; n], vec![0usize; n]);
+    if frames_measured > 0 {
+        for (i, class) in class_maps[last].iter().enumerate() {
+            for (k, &(_, code)) in CLASSES.iter().enumerate() {
+                if code != 0 && code != *class {
+                    continue;
+                }
+                stat_count[k] += 3;
+                stat[k] += mean[i].iter().map(|v| v * v).sum::<f64>();
+            }
+        }
+    }
     Figures {
+        static_part: (0..n).map(|k| rms(stat[k], stat_count[k])).collect(),
         rmse: (0..n)
             .map(|k| [rms(raw[k], count[k]), rms(filtered[k], count[k])])
             .collect(),

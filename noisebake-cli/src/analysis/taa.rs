@@ -68,7 +68,7 @@ pub fn taa_rmse(
     let n = w * h;
     assert_eq!(values.len(), n * t, "values are w × h × t");
     let est: Vec<f64> = values.iter().map(|&s| phi(s)).collect();
-    // Four loops of the mask, and for a slow blend (Bevy's 0.015 for a still pixel) 6 / α
+    // Four loops of the mask, and for a slow blend (Bevy's 0.015 for a still pixel with `Hdr`) 6 / α
     // frames, so the first frame's weight in the history is below 0.3 % when the measured loop
     // starts.
     let total = (4 * t)

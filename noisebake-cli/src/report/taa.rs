@@ -23,9 +23,15 @@ pub const SIGMA: f64 = 1.3435;
 pub const ALPHA: f64 = 0.1;
 /// Whole pixels per frame of the moving camera.
 pub const MOTION: [i32; 2] = [3, 1];
-/// Bevy's blend weight for a pixel that has been still for a few frames (its TAA lowers the
-/// weight of the new frame from 0.1 towards this as its confidence in the history grows).
-pub const BEVY_STILL_ALPHA: f64 = 0.015;
+/// Bevy's blend weight for a still pixel in low dynamic range, its default. Its TAA blends the
+/// new frame at `clamp(1 / confidence, 0.015, 0.1)` and adds 10 to the confidence each frame a
+/// pixel is still, but keeps the confidence in the history's alpha channel, and in low dynamic
+/// range the history has the view target's 8-bit format: the stored confidence saturates at 1,
+/// so every still frame blends at 1 / (1 + 10).
+pub const BEVY_LDR_ALPHA: f64 = 1.0 / 11.0;
+/// Bevy's blend weight for a pixel still for a few frames with `Hdr` (a float history, whose
+/// confidence grows until the blend reaches this floor).
+pub const BEVY_HDR_STILL_ALPHA: f64 = 0.015;
 /// Other motions the 25 % dither is measured at, with and without the clamp: a mask baked for
 /// [`MOTION`] met off the motion it was made for.
 pub const OTHER_MOTIONS: [[i32; 2]; 5] = [[-3, 1], [1, 2], [1, 0], [0, -3], [6, 2]];
@@ -151,10 +157,17 @@ pub fn measure(mask: &str, values: &[f64]) -> Row {
             jobs.push((&INTEGRANDS[1], clip, motion, ALPHA));
         }
     }
-    // Bevy's TAA with a still camera: variance clipping and its slow blend.
+    // Bevy's TAA with a still camera: variance clipping, and its blend in low dynamic range
+    // and, for the 25 % dither, with `Hdr`.
     for ig in &INTEGRANDS[..3] {
-        jobs.push((ig, Clip::Variance(1.0), [0, 0], BEVY_STILL_ALPHA));
+        jobs.push((ig, Clip::Variance(1.0), [0, 0], BEVY_LDR_ALPHA));
     }
+    jobs.push((
+        &INTEGRANDS[1],
+        Clip::Variance(1.0),
+        [0, 0],
+        BEVY_HDR_STILL_ALPHA,
+    ));
     let cells = jobs
         .into_par_iter()
         .map(|(ig, clip, motion, alpha)| Cell {
@@ -342,8 +355,15 @@ pub fn columns() -> Vec<Column> {
     ));
     for ig in ["dither 0.25", "dither 0.10", "dither 0.50"] {
         let head = format!("{} bevy", ig.replace("dither ", "d"));
-        c.push((head, ig, var, [0, 0], BEVY_STILL_ALPHA));
+        c.push((head, ig, var, [0, 0], BEVY_LDR_ALPHA));
     }
+    c.push((
+        "d0.25 bevy hdr".into(),
+        "dither 0.25",
+        var,
+        [0, 0],
+        BEVY_HDR_STILL_ALPHA,
+    ));
     c
 }
 
@@ -397,7 +417,9 @@ RMSE after TAA (α 0.1, the history reprojected, clamped, blended) and a Gaussia
   ramp: s itself), without and with the 3x3 min/max clamp; `var`: variance clipping μ ± σ;
   `moving`: the camera moves (3, 1) pixels per frame and the history is reprojected (and, in the
   second table, at five other motions); `bevy`: Bevy's TAA with a still camera, variance
-  clipping μ ± σ and a blend of 0.015 (the `taa3d` example measures the same in Bevy). open 0.2 /
+  clipping μ ± σ and its blend in low dynamic range, 1/11 (its confidence saturates in the
+  8-bit history), `bevy hdr` with `Hdr`, 0.015, both on a float history (the `taa3d` example
+  measures Bevy itself, whose 8-bit history also rounds). open 0.2 /
   open .25: 3x3 windows (of 1 048 576) lacking a value below 0.2 (0.25) or one at or above 0.8
   (0.75), where the clamp acts on some dither in that range.";
 
