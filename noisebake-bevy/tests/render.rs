@@ -491,6 +491,23 @@ fn taa3d_test() {
                     );
                 }
             }
+            // Over the whole image (the same pixels every frame) the error's mean over the
+            // frames cannot exceed the error: the static part is a part of it.
+            let image = taa3d_classes().len() - 1;
+            let (part, whole) = (f.static_part[image], f.rmse[image][1]);
+            assert!(
+                part.is_finite() && part > 0.0 && part <= whole * (1.0 + 1e-9),
+                "{:?} {noise:?}: static part {part} of {whole}",
+                p.setting
+            );
+            if p.setting.path == CameraPath::Still {
+                // The pane fills its pixels in every frame, jitter or not.
+                assert!(
+                    f.static_part[0].is_finite(),
+                    "{noise:?}: {:?}",
+                    f.static_part
+                );
+            }
         }
         assert!(
             p.class_pixels.iter().all(|&c| c > 0.0),
@@ -510,6 +527,7 @@ fn taa3d_test() {
     let markdown = taa3d::markdown(&m, "# stamp\n");
     assert!(markdown.contains("## Camera `orbit`, `Hdr`"), "{markdown}");
     assert!(markdown.contains("| pane 30 % |"), "{markdown}");
+    assert!(markdown.contains("| static part (image) |"), "{markdown}");
 
     let (a, b) = taa3d::reference_twice(
         Setting {
