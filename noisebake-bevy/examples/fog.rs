@@ -12,15 +12,17 @@
 //! `--noise stbn|ign|white` (default stbn), `--frames N` (default 32), `--size S` (a multiple
 //! of 64, default 256), `--screenshot FILE` (the last frame as PNG).
 
+#[path = "common/headless.rs"]
+pub mod headless;
+pub use headless::finish_gpu_work;
+
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
-use bevy::app::PluginsState;
 use bevy::asset::{RenderAssetUsages, uuid_handle};
 use bevy::camera::RenderTarget;
 use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::prelude::*;
-use bevy::render::RenderPlugin;
 use bevy::render::gpu_readback::{Readback, ReadbackComplete};
 use bevy::render::render_resource::{
     AsBindGroup, Extent3d, TextureDimension, TextureFormat, TextureUsages,
@@ -137,26 +139,11 @@ pub fn run(opts: &Options) -> Result<Report, String> {
     }
     let mut app = App::new();
     app.add_plugins((
-        DefaultPlugins
-            .set(RenderPlugin {
-                synchronous_pipeline_compilation: true,
-                ..default()
-            })
-            // Headless: no window, and no winit event loop (which needs a display).
-            .set(bevy::window::WindowPlugin {
-                primary_window: None,
-                exit_condition: bevy::window::ExitCondition::DontExit,
-                ..default()
-            })
-            .disable::<bevy::winit::WinitPlugin>(),
+        headless::plugins(),
         NoisebakePlugin,
         Material2dPlugin::<FogMaterial>::default(),
     ));
-    while app.plugins_state() == PluginsState::Adding {
-        bevy::tasks::tick_global_task_pools_on_main_thread();
-    }
-    app.finish();
-    app.cleanup();
+    headless::start(&mut app);
     app.world_mut()
         .resource_mut::<Assets<Shader>>()
         .insert(&FOG_SHADER, Shader::from_wgsl(FRAGMENT, "fog.wgsl"))
@@ -269,27 +256,6 @@ pub fn run(opts: &Options) -> Result<Report, String> {
             .map_err(|e| format!("writing {}: {e}", path.display()))?;
     }
     Ok(report)
-}
-
-/// Blocks until the GPU has finished every submission so far, without a time limit.
-///
-/// A headless app has no swapchain to hold it back: each `app.update()` submits a frame and
-/// returns, so on a slow driver (SwiftShader on a busy CPU) submissions pile up faster than they
-/// run. When the app is dropped, wgpu's queue waits for the last of them for at most 6.3 s and
-/// then panics ("We timed out while waiting on the last successful submission to complete!"),
-/// which aborted the process on SwiftShader. Waiting after every update keeps one frame in
-/// flight, delivers each readback in the update after its frame, and leaves the queue idle
-/// whenever the app is dropped.
-pub fn finish_gpu_work(app: &App) -> Result<(), String> {
-    use bevy::render::render_resource::PollType;
-    use bevy::render::renderer::RenderDevice;
-    match app.world().get_resource::<RenderDevice>() {
-        Some(device) => device
-            .poll(PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| format!("waiting for the GPU: {e}")),
-        None => Ok(()),
-    }
 }
 
 /// A 5×5 box filter with toroidal wrap.

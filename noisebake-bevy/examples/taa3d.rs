@@ -54,6 +54,8 @@
 //! write their own motion vectors). The document gives the reference's distance from itself
 //! rendered without TAA, which bounds what TAA adds to it.
 
+#[path = "common/headless.rs"]
+mod headless;
 #[path = "taa3d/measure.rs"]
 mod measure;
 #[path = "taa3d/shaders.rs"]
@@ -63,7 +65,6 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
 use bevy::anti_alias::taa::TemporalAntiAliasing;
-use bevy::app::PluginsState;
 use bevy::asset::uuid_handle;
 use bevy::camera::{Hdr, RenderTarget};
 use bevy::core_pipeline::tonemapping::Tonemapping;
@@ -71,15 +72,12 @@ use bevy::diagnostic::FrameCount;
 use bevy::mesh::MeshVertexBufferLayoutRef;
 use bevy::pbr::{MaterialPipeline, MaterialPipelineKey};
 use bevy::prelude::*;
-use bevy::render::RenderPlugin;
 use bevy::render::gpu_readback::{Readback, ReadbackComplete};
 use bevy::render::render_resource::{
     AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError, TextureFormat,
     TextureUsages,
 };
 use bevy::shader::{Shader, ShaderRef};
-use bevy::window::WindowPlugin;
-use bevy::winit::WinitPlugin;
 pub use measure::{CLASSES, Frame};
 use noisebake_bevy::{NoisebakePlugin, mask_image};
 
@@ -602,23 +600,10 @@ fn set_mode(world: &mut World, mode: Mode) {
 /// pipelines compiled as they are asked for) or in a window.
 fn app(headless: bool) -> App {
     let mut app = App::new();
-    let render = RenderPlugin {
-        synchronous_pipeline_compilation: headless,
-        ..default()
-    };
     if headless {
-        app.add_plugins(
-            DefaultPlugins
-                .set(render)
-                .set(WindowPlugin {
-                    primary_window: None,
-                    exit_condition: bevy::window::ExitCondition::DontExit,
-                    ..default()
-                })
-                .disable::<WinitPlugin>(),
-        );
+        app.add_plugins(headless::plugins());
     } else {
-        app.add_plugins(DefaultPlugins.set(render));
+        app.add_plugins(DefaultPlugins);
     }
     app.add_plugins((
         NoisebakePlugin,
@@ -626,11 +611,7 @@ fn app(headless: bool) -> App {
         MaterialPlugin::<Fog>::default(),
     ));
     if headless {
-        while app.plugins_state() == PluginsState::Adding {
-            bevy::tasks::tick_global_task_pools_on_main_thread();
-        }
-        app.finish();
-        app.cleanup();
+        headless::start(&mut app);
     }
     let mut shaders = app.world_mut().resource_mut::<Assets<Shader>>();
     for (handle, source, path) in [
@@ -767,7 +748,7 @@ impl Runner {
         }
         // One frame for the materials' change to reach the render world, not kept.
         self.app.update();
-        finish_gpu_work(&self.app)?;
+        headless::finish_gpu_work(&self.app)?;
         self.sink.lock().unwrap().clear();
         *self.app.world_mut().resource_mut::<FrameCount>() = FrameCount(0);
         let texels = (self.size * self.size) as usize;
@@ -781,7 +762,7 @@ impl Runner {
                 .expect("the camera's TAA")
                 .reset = k == 0 || !taa;
             self.app.update();
-            finish_gpu_work(&self.app)?;
+            headless::finish_gpu_work(&self.app)?;
             let got: Vec<Vec<u8>> = self.sink.lock().unwrap().drain(..).collect();
             // Update k delivers the readback of frame k − 1 (of this run; at k = 0, the
             // settling frame's, dropped).
@@ -828,20 +809,6 @@ impl Runner {
                     format!("{} {}", a.0.driver, a.0.driver_info),
                 )
             })
-    }
-}
-
-/// Blocks until the GPU has finished every submission so far (one frame in flight; see the
-/// `fog` example for why a headless app needs it on a slow driver).
-fn finish_gpu_work(app: &App) -> Result<(), String> {
-    use bevy::render::render_resource::PollType;
-    use bevy::render::renderer::RenderDevice;
-    match app.world().get_resource::<RenderDevice>() {
-        Some(device) => device
-            .poll(PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| format!("waiting for the GPU: {e}")),
-        None => Ok(()),
     }
 }
 

@@ -7,7 +7,6 @@
 
 use std::sync::{Arc, Mutex};
 
-use bevy::app::PluginsState;
 use bevy::asset::RenderAssetUsages;
 use bevy::diagnostic::FrameCount;
 use bevy::prelude::*;
@@ -21,7 +20,7 @@ use bevy::render::render_resource::binding_types::{
 use bevy::render::render_resource::*;
 use bevy::render::renderer::{RenderContext, RenderDevice, RenderGraph};
 use bevy::render::texture::GpuImage;
-use bevy::render::{Render, RenderApp, RenderPlugin, RenderStartup, RenderSystems};
+use bevy::render::{Render, RenderApp, RenderStartup, RenderSystems};
 use bevy::shader::Shader;
 use noise_runtime::{Mask3, ldg};
 use noisebake_bevy::{NoisebakePlugin, mask_image};
@@ -181,27 +180,8 @@ fn leak(bytes: Vec<u8>) -> &'static [u8] {
 fn render_app() -> Option<App> {
     let started = std::panic::catch_unwind(|| {
         let mut app = App::new();
-        app.add_plugins((
-            DefaultPlugins
-                .set(RenderPlugin {
-                    synchronous_pipeline_compilation: true,
-                    ..default()
-                })
-                // Headless: no window, and no winit event loop (which needs a display).
-                .set(bevy::window::WindowPlugin {
-                    primary_window: None,
-                    exit_condition: bevy::window::ExitCondition::DontExit,
-                    ..default()
-                })
-                .disable::<bevy::winit::WinitPlugin>(),
-            NoisebakePlugin,
-            ComputePlugin,
-        ));
-        while app.plugins_state() == PluginsState::Adding {
-            bevy::tasks::tick_global_task_pools_on_main_thread();
-        }
-        app.finish();
-        app.cleanup();
+        app.add_plugins((fog::headless::plugins(), NoisebakePlugin, ComputePlugin));
+        fog::headless::start(&mut app);
         app
     });
     if let (Ok(app), Ok(want)) = (&started, std::env::var("WGPU_ADAPTER_NAME")) {
@@ -435,8 +415,10 @@ fn fog_test() {
     );
 }
 
+// Each example is its own crate and declares the headless helpers itself, so this test crate,
+// which holds both examples, loads that file twice.
 #[path = "../examples/taa3d.rs"]
-#[allow(dead_code)]
+#[allow(dead_code, clippy::duplicate_mod)]
 mod taa3d;
 
 /// The 3D example measures in Bevy's own TAA, headless, on a short run: every figure it
