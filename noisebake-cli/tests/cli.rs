@@ -1,18 +1,7 @@
 //! The `noisebake` binary end to end: gen, bake, analyze, and its errors.
 
-use std::process::Command;
-
-fn noisebake(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_noisebake"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
+mod common;
+use common::noisebake;
 
 /// A `.npy` file's header text and where its data starts.
 fn npy_header(bytes: &[u8]) -> (String, usize) {
@@ -24,9 +13,7 @@ fn npy_header(bytes: &[u8]) -> (String, usize) {
 }
 
 fn tmp(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("noisebake-cli-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::tmp_dir("cli", name)
 }
 
 #[test]

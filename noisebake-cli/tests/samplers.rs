@@ -1,26 +1,14 @@
 //! `noisebake export-sampler` and `noisebake search-sampler` end to end, and the constants of
 //! `motion_pairs` against the model they were searched with.
 
+mod common;
+use common::noisebake;
+
 use noise_runtime::sampler;
 use noisebake_cli::motion_search::{self as ms, model};
-use std::process::Command;
-
-fn noisebake(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_noisebake"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
 
 fn tmp(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("noisebake-samplers-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::tmp_dir("samplers", name)
 }
 
 /// The float32 values of a `.npy` and its header.
